@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The paper's test curves (section 5.1), sampled with n vertices.
+#ifndef DOT_CURVES_H_
+#define DOT_CURVES_H_
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "dot/geometry.h"
+
+namespace dot {
+
+enum class Curve { kMonkey, kMobius, kSpiral, kMoment, kTwist, kTrefoil };
+inline constexpr Curve kPaperCurves[] = {Curve::kMonkey, Curve::kMobius,
+                                         Curve::kSpiral, Curve::kMoment,
+                                         Curve::kTwist};
+
+std::string_view CurveName(Curve c);  // "monkey", "mobius", ...
+std::optional<Curve> CurveFromName(std::string_view name);
+
+// Monkey: boundary of a monkey saddle over the unit circle.
+// Mobius: boundary of a Mobius strip (one loop around twice).
+// Spiral: two stacked planar spirals joined at their ends (a spiral ribbon).
+// Moment: p_i = (t_i, t_i^2, t_i^3) with t_i = i / n scaled to unit size.
+// Twist: the Moment vertices in crisscross order p1, p(n-1), p3, ... (n odd;
+//   an even n is rounded up).
+// Trefoil: a trefoil knot, which has no triangulation at all.
+// Monkey, Mobius, Spiral and Trefoil are sampled uniformly by arc length.
+std::vector<Vec3> MakeCurve(Curve c, int n);
+
+}  // namespace dot
+
+#endif  // DOT_CURVES_H_

@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Umbrella header of the dot core library: include this, call
+// dot::Triangulate(problem, options).
+#ifndef DOT_DOT_H_
+#define DOT_DOT_H_
+
+#include "dot/curves.h"     // IWYU pragma: export
+#include "dot/geometry.h"   // IWYU pragma: export
+#include "dot/holes.h"      // IWYU pragma: export
+#include "dot/io.h"         // IWYU pragma: export
+#include "dot/metrics.h"    // IWYU pragma: export
+#include "dot/status.h"     // IWYU pragma: export
+#include "dot/triangulate.h"  // IWYU pragma: export
+#include "dot/validate.h"   // IWYU pragma: export
+
+#endif  // DOT_DOT_H_

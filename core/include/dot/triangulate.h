@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The library's one call: Triangulate(problem, options, control) returns the
+// minimal-cost triangulation of a closed 3D polygon over a search space.
+//
+// Search spaces (paper: Zou, Ju, Carr, "Delaunay-restricted optimal
+// triangulation of 3D polygons"):
+//  - kDelaunay: triangles of the 3D Delaunay tetrahedralization of the
+//    vertices (TetGen, exact input coordinates), solved by DOT1 / DOT2. Output
+//    is free of self-intersections by construction. Planar and nearly planar
+//    polygons are triangulated instead over the 2D constrained Delaunay
+//    triangulation in their dominant coordinate plane (CGAL), so the output is
+//    a height field over that plane.
+//  - kAll: every non-degenerate triangle on the vertices (GK1 / GK2): the
+//    unrestricted optimum, which may self-intersect; the result counts the
+//    intersecting pairs. Memory grows as n^3: for small n only.
+//  - kAuto: kDelaunay, then kAll when no Delaunay triangulation exists and
+//    n <= Options::all_space_max_vertices.
+// DOT1/GK1 run when only per-triangle weights are non-zero, DOT2/GK2 when a
+// bi-triangle weight is. Both are exact minimizers; ties break
+// deterministically.
+//
+// Thread safety: TetGen keeps file-scope state, so concurrent calls that reach
+// the TetGen backend must be serialized (the default backend holds a mutex) or
+// run in separate processes (Control::tetrahedralize lets a caller plug one
+// in). Everything else is re-entrant.
+#ifndef DOT_TRIANGULATE_H_
+#define DOT_TRIANGULATE_H_
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dot/geometry.h"
+#include "dot/metrics.h"
+#include "dot/status.h"
+
+namespace dot {
+
+enum class SearchSpace { kAuto, kDelaunay, kAll };
+// What actually produced a result.
+enum class SpaceUsed { kNone, kDelaunay3d, kPlanarDelaunay2d, kAll };
+enum class Solver { kNone, kDot1, kDot2, kGk1, kGk2 };
+enum class Stage { kValidate, kDelaunay, kAdjacency, kDynamicProgram, kTiling };
+
+std::string_view SearchSpaceName(SearchSpace s);
+std::string_view SpaceUsedName(SpaceUsed s);
+std::string_view SolverName(Solver s);
+
+struct Problem {
+  std::vector<Vec3> vertices;  // polygon, closed from last to first
+  std::vector<Vec3> normals;   // empty, or one boundary normal per vertex
+  MetricWeights weights;       // all zero means area alone
+};
+
+struct Options {
+  SearchSpace space = SearchSpace::kAuto;
+  // Split non-Delaunay polygon edges at their midpoints until every polygon
+  // edge is on a Delaunay triangle (paper, Lemma 4.3).
+  bool protect_edges = false;
+  int max_inserted_vertices = 100000;  // cap for edge protection
+  // kAuto falls back to kAll only up to this many vertices; an explicit kAll
+  // is refused above all_space_hard_limit.
+  int all_space_max_vertices = 40;
+  int all_space_hard_limit = 400;
+  // A polygon is planar when every vertex is within this fraction of its
+  // bounding-box diagonal from its least-squares plane.
+  double planar_tolerance = 1e-6;
+  // Refuse requests whose estimated table memory exceeds this many bytes.
+  int64_t memory_budget_bytes = int64_t{4} << 30;
+  // Count self-intersecting triangle pairs of the output (always done for
+  // kAll results, whose output may self-intersect).
+  bool validate_output = false;
+};
+
+// Tetrahedralization backend: fills `tets` with vertex-index quadruples of
+// the 3D Delaunay tetrahedralization of `points` (no duplicates, not all
+// coplanar). The default is TetGen in-process, serialized by a mutex.
+using TetrahedralizeFn = std::function<Status(
+    const std::vector<Vec3>& points, std::vector<std::array<int32_t, 4>>* tets)>;
+
+// Run-time hooks of one call, as opposed to its configuration.
+struct Control {
+  const std::atomic<bool>* cancel = nullptr;  // polled; true stops the run
+  std::chrono::steady_clock::time_point deadline =
+      std::chrono::steady_clock::time_point::max();
+  // Called from the computing thread, at most every few milliseconds.
+  std::function<void(Stage, double fraction)> progress;
+  TetrahedralizeFn tetrahedralize;  // empty: TetGen in-process
+};
+
+struct Stats {
+  int n = 0;                        // polygon vertices, after edge protection
+  int64_t tetrahedra = 0;           // 3D Delaunay tetrahedra
+  int64_t delaunay_triangles = 0;   // distinct faces of those (or 2D faces)
+  int64_t search_triangles = 0;     // |S|: candidate triangles
+  int64_t edges = 0;                // distinct edges of the candidates
+  int64_t adjacency_entries = 0;    // |Pi|: edge-triangle incidences
+  int64_t dp_states = 0;            // DOT1: edges; DOT2: edge-triangle pairs
+  int64_t table_bytes = 0;          // adjacency + DP tables
+  int64_t estimated_bytes = 0;      // the estimate checked against the budget
+  double validate_ms = 0, delaunay_ms = 0, adjacency_ms = 0, dp_ms = 0,
+         tiling_ms = 0, total_ms = 0;
+};
+
+struct Result {
+  Status status;  // kOk: triangles hold the answer; kNoTriangulation: reason
+  std::vector<Vec3> vertices;       // the input's, then any inserted ones
+  std::vector<Triangle> triangles;  // oriented: polygon runs i -> i+1
+  std::vector<int32_t> polygon;     // the loop (with inserted vertices)
+  std::vector<int32_t> inserted;    // indices of vertices edge protection added
+  std::vector<std::pair<int32_t, int32_t>> non_delaunay_edges;
+  double total_cost = 0;
+  MetricValues metric_costs;  // unweighted sum of each metric
+  SpaceUsed space_used = SpaceUsed::kNone;
+  Solver solver = Solver::kNone;
+  bool planar = false;
+  int64_t intersecting_pairs = -1;  // -1: not checked
+  Stats stats;
+};
+
+// Checks the problem, then solves it. Never throws; every failure is in
+// Result::status with a message naming the offending input.
+Result Triangulate(const Problem& problem, const Options& options = {},
+                   const Control& control = {});
+
+// Bytes the adjacency and DP tables of a search space of `triangles`
+// candidates need (DOT2 when `bi_triangle`).
+int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle);
+
+}  // namespace dot
+
+#endif  // DOT_TRIANGULATE_H_

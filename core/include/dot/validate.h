@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Checks a triangle set against the polygon it should span. Used on every
+// output in the tests, and by callers who want proof rather than trust.
+#ifndef DOT_VALIDATE_H_
+#define DOT_VALIDATE_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dot/geometry.h"
+
+namespace dot {
+
+struct MeshReport {
+  bool indices_in_range = false;
+  int64_t degenerate_triangles = 0;  // repeated index or zero area (exact)
+  int64_t non_manifold_edges = 0;    // edges on more than two triangles
+  int64_t misoriented_edges = 0;     // interior edges used twice the same way
+  bool boundary_is_polygon = false;  // boundary edges == polygon edges
+  bool disk = false;  // connected, manifold vertices, Euler characteristic 1
+  // Pairs of triangles meeting other than in a shared edge or vertex, decided
+  // with exact predicates; -1 when not computed.
+  int64_t intersecting_pairs = -1;
+  std::string first_problem;  // human-readable, empty when valid
+  bool valid() const { return first_problem.empty(); }
+};
+
+// `polygon` lists the loop as indices into `vertices`.
+MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
+                        const std::vector<int32_t>& polygon,
+                        const std::vector<Triangle>& triangles,
+                        bool check_intersections = true);
+
+// Number of triangle pairs that intersect other than along a shared edge or
+// at a shared vertex (exact predicates, box-intersection candidate pairs).
+int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
+                               const std::vector<Triangle>& triangles);
+
+}  // namespace dot
+
+#endif  // DOT_VALIDATE_H_

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Candidate triangle sets (search spaces) over polygon positions 0..n-1,
+// each triangle sorted ascending.
+#ifndef DOT_CORE_DELAUNAY_H_
+#define DOT_CORE_DELAUNAY_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dot/geometry.h"
+#include "dot/status.h"
+#include "dot/triangulate.h"
+
+namespace dot {
+
+// TetGen, in-process. TetGen's robust-predicate filters are file-scope
+// statics, so calls are serialized by a mutex private to this function; for
+// parallelism run it in separate processes. The caller must not pass
+// duplicate or (nearly) coplanar points: TetGen aborts the process on them.
+Status TetgenTetrahedralize(const std::vector<Vec3>& points,
+                            std::vector<std::array<int32_t, 4>>* tets);
+
+// Distinct faces of a tetrahedralization, sorted.
+std::vector<Triangle> FacesOfTetrahedra(
+    const std::vector<std::array<int32_t, 4>>& tets);
+
+// Triangles of the 2D constrained Delaunay triangulation of a planar polygon
+// projected along `drop_axis` (its coordinates copied exactly, so the lifted
+// triangles form a height field). kInvalidArgument, naming two crossing
+// edges, when the projection is not a simple polygon.
+Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
+                          std::vector<Triangle>* triangles);
+
+// Every non-degenerate triangle on n positions (the GK search space).
+Status AllTriangles(const std::vector<Vec3>& loop, const Control& control,
+                    std::vector<Triangle>* triangles);
+
+}  // namespace dot
+
+#endif  // DOT_CORE_DELAUNAY_H_

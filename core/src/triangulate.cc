@@ -1,0 +1,239 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Orchestration: validate -> search space -> adjacency -> DP -> tiling ->
+// result. Each stage lives in its own file; this one only wires them.
+#include "dot/triangulate.h"
+
+#include <chrono>
+#include <numeric>
+#include <sstream>
+
+#include "adjacency.h"
+#include "delaunay.h"
+#include "dot/validate.h"
+#include "edge_protection.h"
+#include "input_check.h"
+#include "plane_fit.h"
+#include "polygon_loop.h"
+#include "solvers.h"
+
+namespace dot {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Candidates {
+  std::vector<Triangle> triangles;  // over loop positions
+  SpaceUsed space = SpaceUsed::kNone;
+};
+
+Status CheckBudget(int64_t triangles, bool bi, const Options& options,
+                   Stats* stats) {
+  stats->estimated_bytes = EstimateTableBytes(triangles, bi);
+  if (stats->estimated_bytes > options.memory_budget_bytes) {
+    std::ostringstream s;
+    s << "estimated memory " << (stats->estimated_bytes >> 20) << " MiB for "
+      << triangles << " candidate triangles exceeds the budget of "
+      << (options.memory_budget_bytes >> 20) << " MiB";
+    return MakeStatus(StatusCode::kResourceExhausted, s.str());
+  }
+  return OkStatus();
+}
+
+void Report(const Control& control, Stage stage, double fraction) {
+  if (control.progress) control.progress(stage, fraction);
+}
+
+// Runs adjacency, the DP and tiling over a candidate set; on success fills
+// the result's triangles (as vertex ids) and solver.
+Status Solve(const PolygonLoop& loop, const Candidates& cand,
+             const MetricWeights& weights, const Options& options,
+             const Control& control, Result* r) {
+  const bool bi = HasBiTriangleWeight(weights);
+  Stats& st = r->stats;
+  Status s = CheckBudget(static_cast<int64_t>(cand.triangles.size()), bi,
+                         options, &st);
+  if (!s.ok()) return s;
+
+  Report(control, Stage::kAdjacency, 0);
+  auto t0 = Clock::now();
+  const std::vector<Vec3> points = loop.Points();
+  std::vector<Vec3> normals;  // in loop order, only when weighted
+  if (weights[Metric::kNormalDeviation] != 0) {
+    for (int32_t id : loop.ids) normals.push_back(loop.normals[id]);
+  }
+  const size_t count = cand.triangles.size();
+  std::vector<double> w(count);
+  std::vector<Vec3> unit;
+  if (bi) unit.resize(count);
+  for (size_t t = 0; t < count; ++t) {
+    w[t] = WeightedTotal(weights,
+                         PerTriangleMetrics(points, normals, cand.triangles[t]));
+    if (bi) unit[t] = UnitNormal(points, cand.triangles[t]);
+  }
+  Adjacency adj;
+  s = BuildAdjacency(loop.size(), cand.triangles, control, &adj);
+  if (!s.ok()) return s;
+  st.search_triangles = static_cast<int64_t>(count);
+  st.edges = adj.edge_count();
+  st.adjacency_entries = static_cast<int64_t>(adj.inner.size() + adj.outer.size());
+  st.adjacency_ms = MsSince(t0);
+
+  Report(control, Stage::kDynamicProgram, 0);
+  DpSolution sol;
+  if (bi) {
+    s = SolveDot2(adj, w, unit,
+                  {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
+                  control, &sol);
+  } else {
+    s = SolveDot1(adj, w, control, &sol);
+  }
+  st.dp_states = sol.states;
+  st.table_bytes = adj.Bytes() +
+                   static_cast<int64_t>(count * (sizeof(Triangle) + sizeof(double))) +
+                   static_cast<int64_t>(unit.size() * sizeof(Vec3)) +
+                   sol.table_bytes;
+  st.dp_ms = sol.dp_ms;
+  st.tiling_ms = sol.tiling_ms;
+  const bool all = cand.space == SpaceUsed::kAll;
+  r->solver = bi ? (all ? Solver::kGk2 : Solver::kDot2)
+                 : (all ? Solver::kGk1 : Solver::kDot1);
+  r->space_used = cand.space;
+  if (s.code == StatusCode::kNoTriangulation) {
+    r->non_delaunay_edges.clear();
+    for (int32_t i : adj.missing_polygon_edges) {
+      r->non_delaunay_edges.emplace_back(loop.ids[i],
+                                         loop.ids[(i + 1) % loop.size()]);
+    }
+    std::ostringstream m;
+    if (r->non_delaunay_edges.empty()) {
+      m << "polygon is not Delaunay-triangulable";
+    } else {
+      m << r->non_delaunay_edges.size()
+        << " polygon edges are not on any Delaunay triangle:";
+      for (size_t k = 0; k < r->non_delaunay_edges.size() && k < 10; ++k) {
+        m << " " << r->non_delaunay_edges[k].first << "-"
+          << r->non_delaunay_edges[k].second;
+      }
+      if (r->non_delaunay_edges.size() > 10) m << " ...";
+      m << " (edge protection splits them)";
+    }
+    if (all) m.str("no triangulation exists among all triangles");
+    s.message = m.str();
+    return s;
+  }
+  if (!s.ok()) return s;
+  r->triangles.clear();
+  r->triangles.reserve(sol.triangles.size());
+  for (int32_t t : sol.triangles) {
+    const Triangle& p = cand.triangles[t];
+    r->triangles.push_back({loop.ids[p[0]], loop.ids[p[1]], loop.ids[p[2]]});
+  }
+  return OkStatus();
+}
+
+Status DelaunayCandidates(const PlaneFit& fit, bool planar,
+                          const Options& options, const Control& control,
+                          PolygonLoop* loop, Candidates* cand, Stats* stats) {
+  Report(control, Stage::kDelaunay, 0);
+  if (planar) {
+    cand->space = SpaceUsed::kPlanarDelaunay2d;
+    Status s =
+        PlanarCdtTriangles(loop->Points(), fit.dominant_axis, &cand->triangles);
+    stats->delaunay_triangles = static_cast<int64_t>(cand->triangles.size());
+    return s;
+  }
+  cand->space = SpaceUsed::kDelaunay3d;
+  return Delaunay3dFaces(options.protect_edges, options.max_inserted_vertices,
+                         control, loop, &cand->triangles, stats);
+}
+
+Status AllCandidates(const PolygonLoop& loop, const MetricWeights& weights,
+                     const Options& options, const Control& control,
+                     Candidates* cand, Stats* stats) {
+  const int64_t n = loop.size();
+  if (n > options.all_space_hard_limit) {
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "search space 'all' is limited to " +
+                          std::to_string(options.all_space_hard_limit) +
+                          " vertices; the polygon has " + std::to_string(n));
+  }
+  Status s = CheckBudget(n * (n - 1) * (n - 2) / 6,
+                         HasBiTriangleWeight(weights), options, stats);
+  if (!s.ok()) return s;
+  cand->space = SpaceUsed::kAll;
+  return AllTriangles(loop.Points(), control, &cand->triangles);
+}
+
+}  // namespace
+
+int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle) {
+  // Per candidate: the triangle, its weight, three edge ids, the sort
+  // records (3 x 16 bytes, transient), adjacency lists; per edge (at most
+  // 1.5 per triangle in practice, 3 at worst) offsets, ends and DP entries.
+  int64_t per_triangle = 12 + 8 + 12 + 48 + 12 + 3 * (4 * 4 + 12);
+  if (bi_triangle) per_triangle += 24 + 2 * (8 + 4) + 36;
+  return triangles * per_triangle;
+}
+
+Result Triangulate(const Problem& problem, const Options& options,
+                   const Control& control) {
+  const auto t_start = Clock::now();
+  Result r;
+  Report(control, Stage::kValidate, 0);
+  r.status = CheckProblem(problem, options);
+  if (!r.status.ok()) return r;
+  const PlaneFit fit = FitPlane(problem.vertices);
+  r.status = CheckNotCollinear(fit, static_cast<int>(problem.vertices.size()),
+                               options);
+  if (!r.status.ok()) return r;
+  r.planar = fit.max_plane_distance <= options.planar_tolerance * fit.diagonal;
+  MetricWeights weights = problem.weights;
+  if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
+
+  PolygonLoop loop{problem.vertices, problem.normals, {}};
+  loop.ids.resize(problem.vertices.size());
+  std::iota(loop.ids.begin(), loop.ids.end(), 0);
+  r.stats.validate_ms = MsSince(t_start);
+
+  Candidates cand;
+  Status s;
+  if (options.space != SearchSpace::kAll) {
+    const auto t0 = Clock::now();
+    s = DelaunayCandidates(fit, r.planar, options, control, &loop, &cand,
+                           &r.stats);
+    r.stats.delaunay_ms = MsSince(t0);
+    if (s.ok()) s = Solve(loop, cand, weights, options, control, &r);
+  }
+  const bool fallback = options.space == SearchSpace::kAuto &&
+                        s.code == StatusCode::kNoTriangulation &&
+                        loop.size() <= options.all_space_max_vertices;
+  if (options.space == SearchSpace::kAll || fallback) {
+    const auto t0 = Clock::now();
+    s = AllCandidates(loop, weights, options, control, &cand, &r.stats);
+    r.stats.delaunay_ms += MsSince(t0);
+    if (s.ok()) s = Solve(loop, cand, weights, options, control, &r);
+  }
+  r.status = s;
+  r.stats.n = loop.size();
+  r.vertices = std::move(loop.vertices);
+  r.polygon = std::move(loop.ids);
+  for (auto id = static_cast<int32_t>(problem.vertices.size());
+       id < static_cast<int32_t>(r.vertices.size()); ++id) {
+    r.inserted.push_back(id);
+  }
+  if (r.status.ok()) {
+    Report(control, Stage::kTiling, 1);
+    r.metric_costs = EvaluateMetrics(r.vertices, loop.normals, r.triangles);
+    r.total_cost = WeightedTotal(weights, r.metric_costs);
+    if (options.validate_output || r.space_used == SpaceUsed::kAll) {
+      r.intersecting_pairs = CountIntersectingPairs(r.vertices, r.triangles);
+    }
+  }
+  r.stats.total_ms = MsSince(t_start);
+  return r;
+}
+
+}  // namespace dot
