@@ -21,7 +21,8 @@ struct Mix {
 };
 
 std::vector<Mix> MetricMixes() {
-  auto mk = [](const char* name, std::initializer_list<std::pair<Metric, double>> ws) {
+  auto mk = [](const char* name,
+               std::initializer_list<std::pair<Metric, double>> ws) {
     Mix m{name, {}};
     for (auto [metric, weight] : ws) m.w[metric] = weight;
     return m;
@@ -34,10 +35,14 @@ std::vector<Mix> MetricMixes() {
       mk("squared_dihedral", {{Metric::kSquaredDihedral, 1}}),
       mk("dihedral", {{Metric::kDihedral, 1}}),
       mk("max_twist", {{Metric::kSquaredDihedral, -1}}),
-      mk("area+sqdihedral", {{Metric::kArea, 1}, {Metric::kSquaredDihedral, 0.3}}),
-      mk("everything", {{Metric::kArea, 0.7}, {Metric::kPerimeter, 0.2},
-                        {Metric::kNormalDeviation, 0.5}, {Metric::kShape, 0.4},
-                        {Metric::kDihedral, -0.3}, {Metric::kSquaredDihedral, 0.8}}),
+      mk("area+sqdihedral",
+         {{Metric::kArea, 1}, {Metric::kSquaredDihedral, 0.3}}),
+      mk("everything", {{Metric::kArea, 0.7},
+                        {Metric::kPerimeter, 0.2},
+                        {Metric::kNormalDeviation, 0.5},
+                        {Metric::kShape, 0.4},
+                        {Metric::kDihedral, -0.3},
+                        {Metric::kSquaredDihedral, 0.8}}),
   };
 }
 
@@ -52,9 +57,10 @@ Problem RandomProblem(std::mt19937_64& rng, int n) {
 }
 
 std::set<Triangle> DelaunaySpace(const std::vector<Vec3>& v) {
-  std::vector<std::array<int32_t, 4>> tets;
+  Tetrahedralization tets;
   EXPECT_TRUE(TetgenTetrahedralize(v, &tets).ok());
-  const auto faces = FacesOfTetrahedra(tets);
+  std::vector<Triangle> faces;
+  EXPECT_TRUE(FacesOfTetrahedra(tets, &faces).ok());
   return {faces.begin(), faces.end()};
 }
 
@@ -82,10 +88,11 @@ TEST(OptimalityTest, DotAndGkEqualBruteForceOnRandomPolygons) {
     const std::set<Triangle> all = AllSpace(n);
     for (const Mix& mix : mixes) {
       p.weights = mix.w;
-      const std::string what = "trial " + std::to_string(trial) + " n=" +
-                               std::to_string(n) + " metric " + mix.name;
-      const auto ref_dot = testing::BruteForceMinimum(p.vertices, p.normals,
-                                                      delaunay, mix.w);
+      const std::string what = "trial " + std::to_string(trial) +
+                               " n=" + std::to_string(n) + " metric " +
+                               mix.name;
+      const auto ref_dot =
+          testing::BruteForceMinimum(p.vertices, p.normals, delaunay, mix.w);
       const auto ref_gk =
           testing::BruteForceMinimum(p.vertices, p.normals, all, mix.w);
 
@@ -98,8 +105,8 @@ TEST(OptimalityTest, DotAndGkEqualBruteForceOnRandomPolygons) {
       } else {
         ASSERT_TRUE(dot.status.ok()) << what << ": " << dot.status.message;
         ExpectNear(ref_dot.best, dot.total_cost, what + " (DOT)");
-        EXPECT_EQ(dot.solver, HasBiTriangleWeight(mix.w) ? Solver::kDot2
-                                                         : Solver::kDot1);
+        EXPECT_EQ(dot.solver,
+                  HasBiTriangleWeight(mix.w) ? Solver::kDot2 : Solver::kDot1);
         const MeshReport report =
             ValidateMesh(dot.vertices, dot.polygon, dot.triangles);
         EXPECT_TRUE(report.valid()) << what << ": " << report.first_problem;

@@ -17,6 +17,7 @@
 #include "dot/geometry.h"
 #include "dot/status.h"
 #include "dot/triangulate.h"
+#include "flat_vector.h"
 
 namespace dot {
 
@@ -27,7 +28,7 @@ struct Adjacency {
   std::vector<int32_t> inner;             // triangle ids with long edge e
   std::vector<int32_t> outer_begin;       // CSR offsets into outer, E + 1
   std::vector<int32_t> outer;             // slots 2 * t + s with short edge e
-  std::vector<int32_t> tri_edges;         // per triangle: [a,b], [b,c], [a,c]
+  FlatVector<int32_t> tri_edges;          // per triangle: [a,b], [b,c], [a,c]
   int32_t root = -1;                      // edge [0, n-1]
   std::vector<int32_t> missing_polygon_edges;  // i: edge (i, i+1 mod n) absent
 

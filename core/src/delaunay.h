@@ -19,11 +19,13 @@ namespace dot {
 // parallelism run it in separate processes. The caller must not pass
 // duplicate or (nearly) coplanar points: TetGen aborts the process on them.
 Status TetgenTetrahedralize(const std::vector<Vec3>& points,
-                            std::vector<std::array<int32_t, 4>>* tets);
+                            Tetrahedralization* out);
 
-// Distinct faces of a tetrahedralization, sorted.
-std::vector<Triangle> FacesOfTetrahedra(
-    const std::vector<std::array<int32_t, 4>>& tets);
+// Distinct faces of a tetrahedralization, each sorted ascending, found
+// through the neighbour lists in one linear pass. kInternal when the
+// neighbour lists are inconsistent.
+Status FacesOfTetrahedra(const Tetrahedralization& t,
+                         std::vector<Triangle>* faces);
 
 // Triangles of the 2D constrained Delaunay triangulation of a planar polygon
 // projected along `drop_axis` (its coordinates copied exactly, so the lifted

@@ -26,9 +26,12 @@ using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int32_t>;
 
 Point2 Project(const Vec3& p, int drop_axis) {
   switch (drop_axis) {
-    case 0: return {p.y, p.z};
-    case 1: return {p.z, p.x};
-    default: return {p.x, p.y};
+    case 0:
+      return {p.y, p.z};
+    case 1:
+      return {p.z, p.x};
+    default:
+      return {p.x, p.y};
   }
 }
 
@@ -48,23 +51,24 @@ std::optional<std::pair<int32_t, int32_t>> FindCrossingEdges(
     const std::pair<int32_t, int32_t> pair = std::minmax(a, b);
     if (!found || pair < *found) found = pair;
   };
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
-                                [&](const Box& x, const Box& y) {
-    const int32_t i = x.info(), j = y.info();
-    if (next(i) == j || next(j) == i) {
-      // Adjacent edges overlap only when they fold back along one line.
-      const int32_t a = next(i) == j ? i : j, b = next(a), c = next(b);
-      if (CGAL::orientation(p[a], p[b], p[c]) == CGAL::COLLINEAR &&
-          !CGAL::collinear_are_strictly_ordered_along_line(p[a], p[b], p[c])) {
-        report(i, j);
-      }
-      return;
-    }
-    if (CGAL::do_intersect(K::Segment_2(p[i], p[next(i)]),
-                           K::Segment_2(p[j], p[next(j)]))) {
-      report(i, j);
-    }
-  });
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        const int32_t i = x.info(), j = y.info();
+        if (next(i) == j || next(j) == i) {
+          // Adjacent edges overlap only when they fold back along one line.
+          const int32_t a = next(i) == j ? i : j, b = next(a), c = next(b);
+          if (CGAL::orientation(p[a], p[b], p[c]) == CGAL::COLLINEAR &&
+              !CGAL::collinear_are_strictly_ordered_along_line(p[a], p[b],
+                                                               p[c])) {
+            report(i, j);
+          }
+          return;
+        }
+        if (CGAL::do_intersect(K::Segment_2(p[i], p[next(i)]),
+                               K::Segment_2(p[j], p[next(j)]))) {
+          report(i, j);
+        }
+      });
   return found;
 }
 
@@ -80,9 +84,9 @@ Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
     const auto [i, j] = *crossing;
     return MakeStatus(
         StatusCode::kInvalidArgument,
-        "planar polygon is self-intersecting: edge " + std::to_string(i) +
-            "-" + std::to_string((i + 1) % n) + " meets edge " +
-            std::to_string(j) + "-" + std::to_string((j + 1) % n));
+        "planar polygon is self-intersecting: edge " + std::to_string(i) + "-" +
+            std::to_string((i + 1) % n) + " meets edge " + std::to_string(j) +
+            "-" + std::to_string((j + 1) % n));
   }
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles(n);
@@ -95,9 +99,9 @@ Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
       cdt.insert_constraint(handles[i], handles[(i + 1) % n]);
     }
   } catch (const std::exception& e) {
-    return MakeStatus(StatusCode::kInvalidArgument,
-                      std::string("planar polygon is self-intersecting (") +
-                          e.what() + ")");
+    return MakeStatus(
+        StatusCode::kInvalidArgument,
+        std::string("planar polygon is self-intersecting (") + e.what() + ")");
   }
   if (static_cast<int32_t>(cdt.number_of_vertices()) != n) {
     return MakeStatus(StatusCode::kInvalidArgument,

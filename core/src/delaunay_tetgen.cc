@@ -8,7 +8,7 @@
 namespace dot {
 
 Status TetgenTetrahedralize(const std::vector<Vec3>& points,
-                            std::vector<std::array<int32_t, 4>>* tets) {
+                            Tetrahedralization* out_tets) {
   // The one piece of process-wide state in the library, forced by TetGen's.
   static std::mutex tetgen_mutex;
   std::vector<REAL> coords;
@@ -26,7 +26,7 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
     ~Release() { io.pointlist = nullptr; }
   } release{in};
   tetgenbehavior b;
-  char switches[] = "Q";  // quiet: plain Delaunay tetrahedralization
+  char switches[] = "Qn";  // quiet Delaunay tetrahedralization, neighbours
   if (!b.parse_commandline(switches)) {
     return MakeStatus(StatusCode::kInternal, "TetGen rejected its switches");
   }
@@ -38,10 +38,14 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
   } catch (...) {
     return MakeStatus(StatusCode::kInternal, "TetGen failed");
   }
-  if (out.numberofcorners != 4 || out.tetrahedronlist == nullptr) {
+  if (out.numberofcorners != 4 || out.tetrahedronlist == nullptr ||
+      out.neighborlist == nullptr) {
     return MakeStatus(StatusCode::kInternal, "TetGen returned no tetrahedra");
   }
-  tets->resize(out.numberoftetrahedra);
+  auto& tets = out_tets->tets;
+  auto& neighbors = out_tets->neighbors;
+  tets.resize(out.numberoftetrahedra);
+  neighbors.resize(out.numberoftetrahedra);
   std::vector<bool> used(points.size(), false);
   for (int t = 0; t < out.numberoftetrahedra; ++t) {
     for (int k = 0; k < 4; ++k) {
@@ -50,8 +54,10 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
         return MakeStatus(StatusCode::kInternal,
                           "TetGen returned an out-of-range vertex index");
       }
-      (*tets)[t][k] = v;
+      tets[t][k] = v;
       used[v] = true;
+      const int nb = out.neighborlist[4 * t + k];
+      neighbors[t][k] = nb >= 0 && nb < out.numberoftetrahedra ? nb : -1;
     }
   }
   // TetGen silently drops points it considers duplicates; the search space
@@ -66,24 +72,66 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
   return OkStatus();
 }
 
-std::vector<Triangle> FacesOfTetrahedra(
-    const std::vector<std::array<int32_t, 4>>& tets) {
-  std::vector<Triangle> faces;
-  faces.reserve(4 * tets.size());
-  for (const auto& t : tets) {
+Status FacesOfTetrahedra(const Tetrahedralization& t,
+                         std::vector<Triangle>* faces) {
+  const auto count = static_cast<int32_t>(t.tets.size());
+  if (t.neighbors.size() != t.tets.size()) {
+    return MakeStatus(
+        StatusCode::kInternal,
+        "tetrahedralization has " + std::to_string(count) + " tetrahedra but " +
+            std::to_string(t.neighbors.size()) + " neighbour lists");
+  }
+  faces->clear();
+  faces->reserve(2 * t.tets.size() + 4);
+  for (int32_t i = 0; i < count; ++i) {
+    const auto& tet = t.tets[i];
+    int hull_faces = 0;
+    for (int32_t nb : t.neighbors[i]) {
+      if (nb < 0 || nb >= count) {
+        ++hull_faces;
+        continue;
+      }
+      if (nb < i) continue;  // emitted when visiting nb
+      // The shared face: the corners of `tet` that `nb` also has.
+      Triangle f;
+      int k = 0;
+      for (int32_t v : tet) {
+        const auto& other = t.tets[nb];
+        if (std::find(other.begin(), other.end(), v) != other.end() && k < 3) {
+          f[k++] = v;
+        }
+      }
+      if (k != 3) {
+        return MakeStatus(StatusCode::kInternal,
+                          "tetrahedra " + std::to_string(i) + " and " +
+                              std::to_string(nb) +
+                              " are listed as neighbours "
+                              "but share no face");
+      }
+      std::sort(f.begin(), f.end());
+      faces->push_back(f);
+    }
+    if (hull_faces == 0) continue;
+    // Hull faces: those of the four faces not shared with a neighbour.
     for (int skip = 0; skip < 4; ++skip) {
       Triangle f;
       int k = 0;
-      for (int i = 0; i < 4; ++i) {
-        if (i != skip) f[k++] = t[i];
+      for (int c = 0; c < 4; ++c) {
+        if (c != skip) f[k++] = tet[c];
       }
+      bool shared = false;
+      for (int32_t nb : t.neighbors[i]) {
+        if (nb < 0 || nb >= count) continue;
+        const auto& other = t.tets[nb];
+        shared |=
+            std::find(other.begin(), other.end(), tet[skip]) == other.end();
+      }
+      if (shared) continue;
       std::sort(f.begin(), f.end());
-      faces.push_back(f);
+      faces->push_back(f);
     }
   }
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
+  return OkStatus();
 }
 
 }  // namespace dot

@@ -21,32 +21,36 @@ Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
                  const Control& control, DpSolution* out) {
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t edges = adj.edge_count();
-  std::vector<double> best(edges, kInf);
-  std::vector<int32_t> arg(edges, -1);
+  // Filled in edge order by the pass itself: no up-front initialization.
+  std::vector<double> best;
+  std::vector<int32_t> arg;
+  best.reserve(edges);
+  arg.reserve(edges);
   RunTicker ticker(control, Stage::kDynamicProgram);
   for (int32_t e = 0; e < edges; ++e) {
     if (adj.IsPolygonEdge(e)) {
-      best[e] = 0;
+      best.push_back(0);
+      arg.push_back(-1);
       continue;
     }
     double b = kInf;
     int32_t bu = -1;
     for (int32_t i = adj.inner_begin[e]; i < adj.inner_begin[e + 1]; ++i) {
       const int32_t u = adj.inner[i];
-      const double c =
-          weight[u] + best[adj.tri_edges[3 * u]] + best[adj.tri_edges[3 * u + 1]];
+      const double c = weight[u] + best[adj.tri_edges[3 * u]] +
+                       best[adj.tri_edges[3 * u + 1]];
       if (c < b) {
         b = c;
         bu = u;
       }
       if (!ticker.Tick(double(e) / edges)) return ticker.status();
     }
-    best[e] = b;
-    arg[e] = bu;
+    best.push_back(b);
+    arg.push_back(bu);
   }
   out->states = edges;
-  out->table_bytes = static_cast<int64_t>(edges) *
-                     (sizeof(double) + sizeof(int32_t));
+  out->table_bytes =
+      static_cast<int64_t>(edges) * (sizeof(double) + sizeof(int32_t));
   out->dp_ms = MsSince(t0);
   if (adj.root < 0 || arg[adj.root] < 0) {
     return MakeStatus(StatusCode::kNoTriangulation, "");

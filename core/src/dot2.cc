@@ -15,6 +15,7 @@
 #include <limits>
 
 #include "dot/metrics.h"
+#include "flat_vector.h"
 #include "run_control.h"
 #include "solvers.h"
 
@@ -36,8 +37,8 @@ double MinBending(BendingWeights w) {
   if (w.squared_dihedral > 0) {
     const double vertex = -w.dihedral / (2 * w.squared_dihedral);
     if (vertex > 0 && vertex < kPi) {
-      lo = std::min(lo, w.dihedral * vertex +
-                            w.squared_dihedral * vertex * vertex);
+      lo = std::min(lo,
+                    w.dihedral * vertex + w.squared_dihedral * vertex * vertex);
     }
   }
   return lo;
@@ -57,15 +58,20 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t edges = adj.edge_count();
   const size_t slots = 2 * weight.size();
-  std::vector<double> slot_cost(slots, kInf);
-  std::vector<int32_t> slot_arg(slots, -1);
+  RunTicker ticker(control, Stage::kDynamicProgram);
+  FlatVector<double> slot_cost(slots);
+  FlatVector<int32_t> slot_arg(slots);
+  for (size_t i = 0; i < slots; ++i) {
+    slot_cost[i] = kInf;
+    slot_arg[i] = -1;
+    if (!ticker.Tick()) return ticker.status();
+  }
   const double min_bend = MinBending(bending);
   auto bend = [&](const Vec3& a, const Vec3& b) {
     const double theta = BendingAngle(a, b);
     return bending.dihedral * theta + bending.squared_dihedral * theta * theta;
   };
 
-  RunTicker ticker(control, Stage::kDynamicProgram);
   std::vector<InnerCandidate> cand;
   double root_cost = kInf;
   int32_t root_arg = -1;

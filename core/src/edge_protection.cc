@@ -36,16 +36,17 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
                        PolygonLoop* loop, std::vector<Triangle>* faces,
                        Stats* stats) {
   const int32_t input_size = loop->size();
-  std::vector<std::array<int32_t, 4>> tets;
+  Tetrahedralization tets;
   for (;;) {
-    tets.clear();
     const std::vector<Vec3> points = loop->Points();
     Status s = control.tetrahedralize ? control.tetrahedralize(points, &tets)
                                       : TetgenTetrahedralize(points, &tets);
     if (!s.ok()) return s;
-    *faces = FacesOfTetrahedra(tets);
+    s = FacesOfTetrahedra(tets, faces);
+    if (!s.ok()) return s;
     if (!protect) break;
-    const std::vector<int32_t> missing = MissingPolygonEdges(loop->size(), *faces);
+    const std::vector<int32_t> missing =
+        MissingPolygonEdges(loop->size(), *faces);
     if (missing.empty()) break;
     if (loop->size() - input_size + static_cast<int32_t>(missing.size()) >
         max_inserted) {
@@ -68,9 +69,10 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
         const Vec3 mid = 0.5 * (loop->vertices[a] + loop->vertices[b]);
         if (mid == loop->vertices[a] || mid == loop->vertices[b]) {
           return MakeStatus(StatusCode::kInvalidArgument,
-                            "edge protection cannot split edge " +
+                            "edge protection cannot make edge " +
                                 std::to_string(a) + "-" + std::to_string(b) +
-                                ": it is too short to halve");
+                                " Delaunay: it is too short to halve (the "
+                                "polygon may touch itself there)");
         }
         ids.push_back(static_cast<int32_t>(loop->vertices.size()));
         loop->vertices.push_back(mid);
@@ -83,7 +85,7 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
     }
     loop->ids = std::move(ids);
   }
-  stats->tetrahedra = static_cast<int64_t>(tets.size());
+  stats->tetrahedra = static_cast<int64_t>(tets.tets.size());
   stats->delaunay_triangles = static_cast<int64_t>(faces->size());
   return OkStatus();
 }

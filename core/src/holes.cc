@@ -26,7 +26,8 @@ MeshTopology BuildTopology(const MeshData& mesh) {
   std::vector<std::pair<uint64_t, int32_t>> rec;  // (edge, 3 * t + k)
   for (int32_t t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) {
-      const int32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      const int32_t a = mesh.triangles[t][k],
+                    b = mesh.triangles[t][(k + 1) % 3];
       rec.emplace_back(UndirectedEdgeKey(a, b), 3 * t + k);
       ++topo.vertex_degree[a];
     }
@@ -49,8 +50,7 @@ MeshTopology BuildTopology(const MeshData& mesh) {
 
 }  // namespace
 
-Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed,
-                Hole* out) {
+Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
   const auto nt = static_cast<int32_t>(mesh.triangles.size());
   if (nt == 0 || triangles < 1 || triangles >= nt) {
     return MakeStatus(StatusCode::kInvalidArgument,
@@ -140,7 +140,8 @@ Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed,
     for (int k = 0; k < 3; ++k) {
       const int32_t nb = topo.across[3 * t + k];
       if (nb >= 0 && in_hole[nb]) continue;
-      const int32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      const int32_t a = mesh.triangles[t][k],
+                    b = mesh.triangles[t][(k + 1) % 3];
       if (next[a] != -1) {
         return MakeStatus(StatusCode::kInternal,
                           "hole boundary is not a simple loop");

@@ -81,7 +81,8 @@ Status CheckProblem(const Problem& problem, const Options& options) {
                      FormatVec(v[order[k]]));
     }
   }
-  if (options.planar_tolerance < 0 || !std::isfinite(options.planar_tolerance)) {
+  if (options.planar_tolerance < 0 ||
+      !std::isfinite(options.planar_tolerance)) {
     return Invalid("planar tolerance must be a finite number >= 0");
   }
   return OkStatus();

@@ -52,7 +52,8 @@ Status ReadPolygonText(std::istream& in, PolygonData* out) {
                      "' is not a number");
     }
     if (x.size() != 3 && x.size() != 6) {
-      return Invalid("line " + std::to_string(lineno) + ": expected 3 (x y z)"
+      return Invalid("line " + std::to_string(lineno) +
+                     ": expected 3 (x y z)"
                      " or 6 (x y z nx ny nz) numbers, found " +
                      std::to_string(x.size()));
     }
@@ -100,7 +101,8 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
   }
   if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
   if (loop.empty()) {
-    for (size_t i = 0; i < v.size(); ++i) loop.push_back(static_cast<int32_t>(i));
+    for (size_t i = 0; i < v.size(); ++i)
+      loop.push_back(static_cast<int32_t>(i));
   }
   for (int32_t i : loop) out->vertices.push_back(v[i]);
   if (!vn.empty()) {
@@ -147,8 +149,8 @@ Status WriteMesh(std::ostream& out, const std::string& format,
     for (const Triangle& t : mesh.triangles)
       out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
   } else if (format == "off") {
-    out << "OFF\n" << mesh.vertices.size() << ' ' << mesh.triangles.size()
-        << " 0\n";
+    out << "OFF\n"
+        << mesh.vertices.size() << ' ' << mesh.triangles.size() << " 0\n";
     for (const Vec3& p : mesh.vertices)
       out << p.x << ' ' << p.y << ' ' << p.z << '\n';
     for (const Triangle& t : mesh.triangles)
@@ -163,8 +165,7 @@ Status WriteMesh(std::ostream& out, const std::string& format,
     for (const Triangle& t : mesh.triangles)
       out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
   } else {
-    return Invalid("unknown mesh format '" + format +
-                   "'; use obj, ply or off");
+    return Invalid("unknown mesh format '" + format + "'; use obj, ply or off");
   }
   return out ? OkStatus() : Invalid("failed writing the mesh");
 }

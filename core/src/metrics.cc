@@ -67,9 +67,9 @@ MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
     for (Metric k : kAllMetrics) sum[k] += m[k];
     unit[i] = UnitNormal(vertices, triangles[i]);
     for (int j = 0; j < 3; ++j) {
-      edges.emplace_back(UndirectedEdgeKey(triangles[i][j],
-                                           triangles[i][(j + 1) % 3]),
-                         static_cast<int32_t>(i));
+      edges.emplace_back(
+          UndirectedEdgeKey(triangles[i][j], triangles[i][(j + 1) % 3]),
+          static_cast<int32_t>(i));
     }
   }
   std::sort(edges.begin(), edges.end());

@@ -9,67 +9,98 @@ namespace dot {
 
 std::string_view MetricName(Metric m) {
   switch (m) {
-    case Metric::kArea: return "area";
-    case Metric::kPerimeter: return "perimeter";
-    case Metric::kNormalDeviation: return "normal_deviation";
-    case Metric::kShape: return "shape";
-    case Metric::kDihedral: return "dihedral";
-    case Metric::kSquaredDihedral: return "squared_dihedral";
+    case Metric::kArea:
+      return "area";
+    case Metric::kPerimeter:
+      return "perimeter";
+    case Metric::kNormalDeviation:
+      return "normal_deviation";
+    case Metric::kShape:
+      return "shape";
+    case Metric::kDihedral:
+      return "dihedral";
+    case Metric::kSquaredDihedral:
+      return "squared_dihedral";
   }
   return "?";
 }
 
 std::string_view StatusCodeName(StatusCode c) {
   switch (c) {
-    case StatusCode::kOk: return "ok";
-    case StatusCode::kNoTriangulation: return "no_triangulation";
-    case StatusCode::kInvalidArgument: return "invalid_argument";
-    case StatusCode::kResourceExhausted: return "resource_exhausted";
-    case StatusCode::kCancelled: return "cancelled";
-    case StatusCode::kDeadlineExceeded: return "deadline_exceeded";
-    case StatusCode::kInternal: return "internal";
+    case StatusCode::kOk:
+      return "ok";
+    case StatusCode::kNoTriangulation:
+      return "no_triangulation";
+    case StatusCode::kInvalidArgument:
+      return "invalid_argument";
+    case StatusCode::kResourceExhausted:
+      return "resource_exhausted";
+    case StatusCode::kCancelled:
+      return "cancelled";
+    case StatusCode::kDeadlineExceeded:
+      return "deadline_exceeded";
+    case StatusCode::kInternal:
+      return "internal";
   }
   return "?";
 }
 
 std::string_view SearchSpaceName(SearchSpace s) {
   switch (s) {
-    case SearchSpace::kAuto: return "auto";
-    case SearchSpace::kDelaunay: return "delaunay";
-    case SearchSpace::kAll: return "all";
+    case SearchSpace::kAuto:
+      return "auto";
+    case SearchSpace::kDelaunay:
+      return "delaunay";
+    case SearchSpace::kAll:
+      return "all";
   }
   return "?";
 }
 
 std::string_view SpaceUsedName(SpaceUsed s) {
   switch (s) {
-    case SpaceUsed::kNone: return "none";
-    case SpaceUsed::kDelaunay3d: return "delaunay3d";
-    case SpaceUsed::kPlanarDelaunay2d: return "planar_cdt2d";
-    case SpaceUsed::kAll: return "all";
+    case SpaceUsed::kNone:
+      return "none";
+    case SpaceUsed::kDelaunay3d:
+      return "delaunay3d";
+    case SpaceUsed::kPlanarDelaunay2d:
+      return "planar_cdt2d";
+    case SpaceUsed::kAll:
+      return "all";
   }
   return "?";
 }
 
 std::string_view SolverName(Solver s) {
   switch (s) {
-    case Solver::kNone: return "none";
-    case Solver::kDot1: return "DOT1";
-    case Solver::kDot2: return "DOT2";
-    case Solver::kGk1: return "GK1";
-    case Solver::kGk2: return "GK2";
+    case Solver::kNone:
+      return "none";
+    case Solver::kDot1:
+      return "DOT1";
+    case Solver::kDot2:
+      return "DOT2";
+    case Solver::kGk1:
+      return "GK1";
+    case Solver::kGk2:
+      return "GK2";
   }
   return "?";
 }
 
 std::string_view CurveName(Curve c) {
   switch (c) {
-    case Curve::kMonkey: return "monkey";
-    case Curve::kMobius: return "mobius";
-    case Curve::kSpiral: return "spiral";
-    case Curve::kMoment: return "moment";
-    case Curve::kTwist: return "twist";
-    case Curve::kTrefoil: return "trefoil";
+    case Curve::kMonkey:
+      return "monkey";
+    case Curve::kMobius:
+      return "mobius";
+    case Curve::kSpiral:
+      return "spiral";
+    case Curve::kMoment:
+      return "moment";
+    case Curve::kTwist:
+      return "twist";
+    case Curve::kTrefoil:
+      return "trefoil";
   }
   return "?";
 }

@@ -16,8 +16,10 @@ void SymmetricEigen(Mat3 a, double val[3], Mat3 vec) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) vec[i][j] = i == j;
   for (int sweep = 0; sweep < 50; ++sweep) {
-    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-    const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+    const double off =
+        a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const double diag =
+        a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
     if (off <= 1e-30 * diag || off == 0) break;
     for (int p = 0; p < 2; ++p) {
       for (int q = p + 1; q < 3; ++q) {

@@ -12,12 +12,12 @@ namespace dot {
 
 struct PlaneFit {
   Vec3 centroid;
-  Vec3 normal;        // unit normal of the least-squares plane
-  Vec3 direction;     // unit direction of the least-squares line
-  double diagonal = 0;         // bounding-box diagonal
+  Vec3 normal;                    // unit normal of the least-squares plane
+  Vec3 direction;                 // unit direction of the least-squares line
+  double diagonal = 0;            // bounding-box diagonal
   double max_plane_distance = 0;  // largest distance of a point to the plane
   double max_line_distance = 0;   // largest distance of a point to the line
-  int dominant_axis = 2;  // coordinate axis closest to the plane normal
+  int dominant_axis = 2;          // coordinate axis closest to the plane normal
 };
 
 PlaneFit FitPlane(const std::vector<Vec3>& points);

@@ -48,11 +48,16 @@ class RunTicker {
   static constexpr int kStride = 4096;
   std::string StageLabel() const {
     switch (stage_) {
-      case Stage::kValidate: return "validation";
-      case Stage::kDelaunay: return "the Delaunay step";
-      case Stage::kAdjacency: return "adjacency";
-      case Stage::kDynamicProgram: return "the dynamic program";
-      case Stage::kTiling: return "tiling";
+      case Stage::kValidate:
+        return "validation";
+      case Stage::kDelaunay:
+        return "the Delaunay step";
+      case Stage::kAdjacency:
+        return "adjacency";
+      case Stage::kDynamicProgram:
+        return "the dynamic program";
+      case Stage::kTiling:
+        return "tiling";
     }
     return "?";
   }

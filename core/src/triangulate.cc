@@ -14,6 +14,7 @@
 #include "input_check.h"
 #include "plane_fit.h"
 #include "polygon_loop.h"
+#include "run_control.h"
 #include "solvers.h"
 
 namespace dot {
@@ -65,36 +66,42 @@ Status Solve(const PolygonLoop& loop, const Candidates& cand,
     for (int32_t id : loop.ids) normals.push_back(loop.normals[id]);
   }
   const size_t count = cand.triangles.size();
-  std::vector<double> w(count);
+  // Grown inside the ticked loop, so a cancel never waits for a bulk fill.
+  std::vector<double> w;
   std::vector<Vec3> unit;
-  if (bi) unit.resize(count);
+  w.reserve(count);
+  if (bi) unit.reserve(count);
+  RunTicker ticker(control, Stage::kAdjacency);
   for (size_t t = 0; t < count; ++t) {
-    w[t] = WeightedTotal(weights,
-                         PerTriangleMetrics(points, normals, cand.triangles[t]));
-    if (bi) unit[t] = UnitNormal(points, cand.triangles[t]);
+    if (!ticker.Tick()) return ticker.status();
+    w.push_back(WeightedTotal(
+        weights, PerTriangleMetrics(points, normals, cand.triangles[t])));
+    if (bi) unit.push_back(UnitNormal(points, cand.triangles[t]));
   }
   Adjacency adj;
   s = BuildAdjacency(loop.size(), cand.triangles, control, &adj);
   if (!s.ok()) return s;
   st.search_triangles = static_cast<int64_t>(count);
   st.edges = adj.edge_count();
-  st.adjacency_entries = static_cast<int64_t>(adj.inner.size() + adj.outer.size());
+  st.adjacency_entries =
+      static_cast<int64_t>(adj.inner.size() + adj.outer.size());
   st.adjacency_ms = MsSince(t0);
 
   Report(control, Stage::kDynamicProgram, 0);
   DpSolution sol;
   if (bi) {
-    s = SolveDot2(adj, w, unit,
-                  {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
-                  control, &sol);
+    s = SolveDot2(
+        adj, w, unit,
+        {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
+        control, &sol);
   } else {
     s = SolveDot1(adj, w, control, &sol);
   }
   st.dp_states = sol.states;
-  st.table_bytes = adj.Bytes() +
-                   static_cast<int64_t>(count * (sizeof(Triangle) + sizeof(double))) +
-                   static_cast<int64_t>(unit.size() * sizeof(Vec3)) +
-                   sol.table_bytes;
+  st.table_bytes =
+      adj.Bytes() +
+      static_cast<int64_t>(count * (sizeof(Triangle) + sizeof(double))) +
+      static_cast<int64_t>(unit.size() * sizeof(Vec3)) + sol.table_bytes;
   st.dp_ms = sol.dp_ms;
   st.tiling_ms = sol.tiling_ms;
   const bool all = cand.space == SpaceUsed::kAll;

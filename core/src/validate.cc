@@ -51,8 +51,7 @@ bool Overlaps(const std::vector<P3>& p, const Triangle& s, const Triangle& t) {
     std::vector<int32_t> common;
     for (int32_t a : s)
       if (std::find(t.begin(), t.end(), a) != t.end()) common.push_back(a);
-    const P3 &a = p[common[0]], &b = p[common[1]], &c = p[rs[0]],
-             &d = p[rt[0]];
+    const P3 &a = p[common[0]], &b = p[common[1]], &c = p[rs[0]], &d = p[rt[0]];
     return CGAL::orientation(a, b, c, d) == CGAL::COPLANAR &&
            CGAL::coplanar_orientation(a, b, c, d) == CGAL::POSITIVE;
   }
@@ -74,10 +73,10 @@ int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
                        static_cast<int32_t>(i));
   }
   int64_t count = 0;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
-                                [&](const Box& x, const Box& y) {
-    if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
-  });
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
+      });
   return count;
 }
 
@@ -101,9 +100,9 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
   for (size_t i = 0; i < triangles.size(); ++i) {
     const Triangle& t = triangles[i];
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    if (repeated || CGAL::collinear(ToPoint(vertices[t[0]]),
-                                    ToPoint(vertices[t[1]]),
-                                    ToPoint(vertices[t[2]]))) {
+    if (repeated ||
+        CGAL::collinear(ToPoint(vertices[t[0]]), ToPoint(vertices[t[1]]),
+                        ToPoint(vertices[t[2]]))) {
       ++r.degenerate_triangles;
       problem("triangle " + std::to_string(i) + " is degenerate");
     }
@@ -179,11 +178,13 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
   // Disk: connected, Euler characteristic V - E + F = 1, and the triangles
   // around every vertex form a single fan.
   std::vector<int32_t> used;
-  for (const Triangle& t : triangles) used.insert(used.end(), t.begin(), t.end());
+  for (const Triangle& t : triangles)
+    used.insert(used.end(), t.begin(), t.end());
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   int64_t components = 0;
-  for (size_t t = 0; t < triangles.size(); ++t) components += find(t) == int32_t(t);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    components += find(t) == int32_t(t);
   const int64_t euler = static_cast<int64_t>(used.size()) - edge_count +
                         static_cast<int64_t>(triangles.size());
   // Fans: around a vertex the triangles of an edge-manifold mesh form paths

@@ -77,11 +77,17 @@ struct Options {
   bool validate_output = false;
 };
 
-// Tetrahedralization backend: fills `tets` with vertex-index quadruples of
-// the 3D Delaunay tetrahedralization of `points` (no duplicates, not all
-// coplanar). The default is TetGen in-process, serialized by a mutex.
-using TetrahedralizeFn = std::function<Status(
-    const std::vector<Vec3>& points, std::vector<std::array<int32_t, 4>>* tets)>;
+// A 3D Delaunay tetrahedralization: vertex-index quadruples, and for each
+// tetrahedron the indices of the (up to four) tetrahedra sharing a face with
+// it, -1 for faces on the convex hull.
+struct Tetrahedralization {
+  std::vector<std::array<int32_t, 4>> tets;
+  std::vector<std::array<int32_t, 4>> neighbors;
+};
+// Tetrahedralization backend for `points` (no duplicates, not all coplanar).
+// The default is TetGen in-process, serialized by a mutex.
+using TetrahedralizeFn = std::function<Status(const std::vector<Vec3>& points,
+                                              Tetrahedralization* out)>;
 
 // Run-time hooks of one call, as opposed to its configuration.
 struct Control {
@@ -94,15 +100,15 @@ struct Control {
 };
 
 struct Stats {
-  int n = 0;                        // polygon vertices, after edge protection
-  int64_t tetrahedra = 0;           // 3D Delaunay tetrahedra
-  int64_t delaunay_triangles = 0;   // distinct faces of those (or 2D faces)
-  int64_t search_triangles = 0;     // |S|: candidate triangles
-  int64_t edges = 0;                // distinct edges of the candidates
-  int64_t adjacency_entries = 0;    // |Pi|: edge-triangle incidences
-  int64_t dp_states = 0;            // DOT1: edges; DOT2: edge-triangle pairs
-  int64_t table_bytes = 0;          // adjacency + DP tables
-  int64_t estimated_bytes = 0;      // the estimate checked against the budget
+  int n = 0;                       // polygon vertices, after edge protection
+  int64_t tetrahedra = 0;          // 3D Delaunay tetrahedra
+  int64_t delaunay_triangles = 0;  // distinct faces of those (or 2D faces)
+  int64_t search_triangles = 0;    // |S|: candidate triangles
+  int64_t edges = 0;               // distinct edges of the candidates
+  int64_t adjacency_entries = 0;   // |Pi|: edge-triangle incidences
+  int64_t dp_states = 0;           // DOT1: edges; DOT2: edge-triangle pairs
+  int64_t table_bytes = 0;         // adjacency + DP tables
+  int64_t estimated_bytes = 0;     // the estimate checked against the budget
   double validate_ms = 0, delaunay_ms = 0, adjacency_ms = 0, dp_ms = 0,
          tiling_ms = 0, total_ms = 0;
 };
