@@ -14,6 +14,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// AddressSanitizer poisons every freed table; its runs get a looser bound.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kLatencyBudgetMs = 300;
+#else
+constexpr double kLatencyBudgetMs = 100;
+#endif
+
 // Runs `fn` on a thread with a stack of `bytes`.
 template <typename Fn>
 void RunWithStack(size_t bytes, Fn fn) {
@@ -70,7 +77,7 @@ TEST(CancelTest, CancelStopsLongDot2RunWithin100Ms) {
     StatusCode code;
     const double ms = CancelLatencyMs(stage, &code);
     EXPECT_EQ(code, StatusCode::kCancelled);
-    EXPECT_LT(ms, 100) << "stage " << static_cast<int>(stage);
+    EXPECT_LT(ms, kLatencyBudgetMs) << "stage " << static_cast<int>(stage);
   }
 }
 

@@ -14,12 +14,8 @@
 
 namespace dot {
 
-// TetGen, in-process. TetGen's robust-predicate filters are file-scope
-// statics, so calls are serialized by a mutex private to this function; for
-// parallelism run it in separate processes. The caller must not pass
-// duplicate or (nearly) coplanar points: TetGen aborts the process on them.
-Status TetgenTetrahedralize(const std::vector<Vec3>& points,
-                            Tetrahedralization* out);
+// TetgenTetrahedralize is declared in dot/triangulate.h (public: the
+// server's helper processes call it).
 
 // Distinct faces of a tetrahedralization, each sorted ascending, found
 // through the neighbour lists in one linear pass. kInternal when the

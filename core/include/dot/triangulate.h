@@ -89,6 +89,12 @@ struct Tetrahedralization {
 using TetrahedralizeFn = std::function<Status(const std::vector<Vec3>& points,
                                               Tetrahedralization* out)>;
 
+// The default backend: TetGen in this process, serialized by a mutex
+// (TetGen keeps file-scope state). It aborts the process on exactly planar
+// input, which Triangulate never passes it.
+Status TetgenTetrahedralize(const std::vector<Vec3>& points,
+                            Tetrahedralization* out);
+
 // Run-time hooks of one call, as opposed to its configuration.
 struct Control {
   const std::atomic<bool>* cancel = nullptr;  // polled; true stops the run

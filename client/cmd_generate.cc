@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl generate curve|hole : test polygons (the paper's curves, and hole
+// boundaries grown on a triangle mesh), written as "x y z [nx ny nz]" text.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.h"
+#include "exit_codes.h"
+
+namespace dot::client {
+
+void AddGenerateCommand(CLI::App& app, Context* ctx) {
+  CLI::App* gen = app.add_subcommand(
+      "generate", "Write test polygons: the paper's curves or mesh holes.");
+  gen->require_subcommand(1);
+
+  struct CurveFlags {
+    std::string name;
+    int n = 200;
+    std::string out;
+  };
+  auto c = std::make_shared<CurveFlags>();
+  CLI::App* curve = gen->add_subcommand(
+      "curve", "monkey, mobius, spiral, moment, twist or trefoil (knotted)");
+  curve->add_option("name", c->name, "curve name")->required();
+  curve->add_option("-n,--vertices", c->n, "number of vertices")
+      ->check(CLI::Range(3, 100000000))
+      ->capture_default_str();
+  curve->add_option("-o,--output", c->out, "polygon file to write")->required();
+  curve->callback([c, ctx] {
+    const auto which = CurveFromName(c->name);
+    if (!which) {
+      std::cerr << "dotctl: unknown curve '" << c->name << "'\n";
+      ctx->exit_code = kExitUsage;
+      return;
+    }
+    const Status s = WritePolygonText(c->out, {MakeCurve(*which, c->n), {}});
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitFailed;
+    }
+  });
+
+  struct HoleFlags {
+    std::string mesh, out;
+    int triangles = 200;
+    uint64_t seed = 1;
+  };
+  auto h = std::make_shared<HoleFlags>();
+  CLI::App* hole = gen->add_subcommand(
+      "hole",
+      "Grow a disk-shaped hole on a mesh (.off/.obj) and write its boundary "
+      "with the mesh's normals");
+  hole->add_option("mesh", h->mesh, "triangle mesh")->required();
+  hole->add_option("-t,--triangles", h->triangles, "triangles to remove")
+      ->capture_default_str();
+  hole->add_option("--seed", h->seed, "random seed")->capture_default_str();
+  hole->add_option("-o,--output", h->out, "polygon file to write")->required();
+  hole->callback([h, ctx] {
+    MeshData mesh;
+    Hole result;
+    Status s = ReadMeshFile(h->mesh, &mesh);
+    if (s.ok()) s = GrowHole(mesh, h->triangles, h->seed, &result);
+    if (s.ok()) s = WritePolygonText(h->out, result.boundary);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitFailed;
+      return;
+    }
+    std::cout << "hole of " << result.triangles << " triangles, boundary of "
+              << result.boundary.vertices.size() << " vertices -> " << h->out
+              << "\n";
+  });
+}
+
+}  // namespace dot::client

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl health | info | source: the standard health check, the server's
+// description and limits, and its source code (AGPL-3.0 section 13).
+#include <CLI/CLI.hpp>
+#include <fstream>
+#include <iostream>
+
+#include "commands.h"
+#include "dot/v1/triangulation.grpc.pb.h"
+#include "exit_codes.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "wire/wire.h"
+
+namespace dot::client {
+namespace {
+
+std::shared_ptr<grpc::Channel> Channel(Context* ctx) {
+  std::string error;
+  auto channel = MakeChannel(ctx->connection, &error);
+  if (!channel) {
+    std::cerr << "dotctl: " << error << "\n";
+    ctx->exit_code = kExitUsage;
+  }
+  return channel;
+}
+
+void SetDeadline(grpc::ClientContext* context, double seconds) {
+  context->set_deadline(
+      std::chrono::system_clock::now() +
+      std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
+}
+
+}  // namespace
+
+void AddHealthCommand(CLI::App& app, Context* ctx) {
+  auto service = std::make_shared<std::string>();
+  auto timeout = std::make_shared<double>(3);
+  CLI::App* cmd = app.add_subcommand(
+      "health",
+      "Ask grpc.health.v1.Health/Check. Exit code 0 when SERVING, 1 when "
+      "not, 3 when the server cannot be reached: fit for container health "
+      "checks.");
+  cmd->add_option("--service", *service,
+                  "service to check ('' is the whole server, or "
+                  "dot.v1.Triangulator)");
+  cmd->add_option("--health-timeout", *timeout, "seconds to wait")
+      ->capture_default_str();
+  cmd->callback([ctx, service, timeout] {
+    auto channel = Channel(ctx);
+    if (!channel) return;
+    auto stub = grpc::health::v1::Health::NewStub(channel);
+    grpc::ClientContext context;
+    SetDeadline(&context, *timeout);
+    grpc::health::v1::HealthCheckRequest request;
+    request.set_service(*service);
+    grpc::health::v1::HealthCheckResponse response;
+    const grpc::Status s = stub->Check(&context, request, &response);
+    if (!s.ok()) {
+      std::cout << "UNREACHABLE (" << wire::GrpcCodeName(s.error_code()) << ": "
+                << s.error_message() << ")\n";
+      ctx->exit_code =
+          s.error_code() == grpc::StatusCode::UNAVAILABLE ||
+                  s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
+              ? kExitUnavailable
+              : kExitFailed;
+      return;
+    }
+    std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
+                     response.status())
+              << "\n";
+    ctx->exit_code =
+        response.status() == grpc::health::v1::HealthCheckResponse::SERVING
+            ? kExitOk
+            : kExitFailed;
+  });
+}
+
+void AddInfoCommands(CLI::App& app, Context* ctx) {
+  CLI::App* info = app.add_subcommand(
+      "info", "Show the server's version, backends, limits and license.");
+  info->callback([ctx] {
+    auto channel = Channel(ctx);
+    if (!channel) return;
+    auto stub = v1::Triangulator::NewStub(channel);
+    grpc::ClientContext context;
+    SetDeadline(&context, ctx->connection.timeout_s);
+    v1::ServerInfo i;
+    const grpc::Status s = stub->GetServerInfo(&context, {}, &i);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << wire::GrpcCodeName(s.error_code()) << ": "
+                << s.error_message() << "\n";
+      ctx->exit_code = ExitCodeFor(s);
+      return;
+    }
+    std::cout << "version   " << i.version() << "\nbuild     " << i.build()
+              << "\nbackends ";
+    for (const auto& b : i.backends()) std::cout << " [" << b << "]";
+    const auto& l = i.limits();
+    std::cout << "\nlimits    max_vertices=" << l.max_vertices()
+              << " max_compute_ms=" << l.max_compute_ms()
+              << " memory_budget_mb=" << (l.memory_budget_bytes() >> 20)
+              << " threads=" << l.compute_threads()
+              << " queue=" << l.queue_size()
+              << " all_space_max_vertices=" << l.all_space_max_vertices()
+              << " max_message_mb=" << (l.max_message_bytes() >> 20)
+              << "\nlicense   " << i.license() << "\nsource    "
+              << (i.source_url().empty() ? "(no URL set)" : i.source_url())
+              << "\n          " << i.source_note() << "\n";
+  });
+
+  auto out = std::make_shared<std::string>("dot-source.tar.gz");
+  CLI::App* source = app.add_subcommand(
+      "source", "Download the server's complete source code (tar.gz).");
+  source->add_option("-o,--output", *out, "file to write")
+      ->capture_default_str();
+  source->callback([ctx, out] {
+    auto channel = Channel(ctx);
+    if (!channel) return;
+    auto stub = v1::Triangulator::NewStub(channel);
+    grpc::ClientContext context;
+    SetDeadline(&context, ctx->connection.timeout_s);
+    auto reader = stub->GetSource(&context, {});
+    std::ofstream file(*out, std::ios::binary);
+    v1::SourceChunk chunk;
+    size_t bytes = 0;
+    while (reader->Read(&chunk)) {
+      file.write(chunk.data().data(),
+                 static_cast<std::streamsize>(chunk.data().size()));
+      bytes += chunk.data().size();
+    }
+    const grpc::Status s = reader->Finish();
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << wire::GrpcCodeName(s.error_code()) << ": "
+                << s.error_message() << "\n";
+      ctx->exit_code = ExitCodeFor(s);
+      return;
+    }
+    std::cout << "wrote " << bytes << " bytes to " << *out << "\n";
+  });
+}
+
+}  // namespace dot::client

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "request_flags.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace dot::client {
+
+void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
+  auto weight = [&](Metric m, const std::string& help) {
+    std::string flag(MetricName(m));  // squared_dihedral -> --squared-dihedral
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    cmd->add_option("--" + flag, f->weights[m], help)
+        ->group("Metric weights (default: --area 1)");
+  };
+  weight(Metric::kArea, "weight of triangle area (minimal surfaces)");
+  weight(Metric::kPerimeter, "weight of triangle perimeter");
+  weight(Metric::kNormalDeviation,
+         "weight of deviation from the boundary normals (needs normals in "
+         "the input)");
+  weight(Metric::kShape, "weight of triangle shape (0 equilateral, 1 flat)");
+  weight(Metric::kDihedral, "weight of the bending angle between triangles");
+  weight(Metric::kSquaredDihedral,
+         "weight of the squared bending angle (fair surfaces); negative "
+         "maximizes twisting");
+  cmd->add_option("--space", f->space,
+                  "search space: auto (Delaunay, then all triangles for small "
+                  "polygons), delaunay (never self-intersects), all (GK, may "
+                  "self-intersect)")
+      ->check(CLI::IsMember({"auto", "delaunay", "all"}))
+      ->capture_default_str()
+      ->group("Options");
+  cmd->add_flag("--protect-edges", f->protect_edges,
+                "split non-Delaunay polygon edges so more polygons succeed")
+      ->group("Options");
+  cmd->add_flag("--validate", f->validate,
+                "count self-intersecting triangle pairs of the result")
+      ->group("Options");
+  cmd->add_option("--time-budget-ms", f->time_budget_ms,
+                  "compute time allowed per polygon (0: the server's limit)")
+      ->group("Options");
+}
+
+v1::Options RequestFlags::ToOptions() const {
+  v1::Options o;
+  o.set_search_space(space == "delaunay" ? v1::SEARCH_SPACE_DELAUNAY
+                     : space == "all"    ? v1::SEARCH_SPACE_ALL
+                                         : v1::SEARCH_SPACE_AUTO);
+  o.set_protect_edges(protect_edges);
+  o.set_validate_output(validate);
+  o.set_time_budget_ms(time_budget_ms);
+  o.set_omit_input_vertices(omit_input_vertices);
+  return o;
+}
+
+void AddConnectionFlags(CLI::App* app, ConnectionFlags* f) {
+  app->add_option("-s,--server", f->server,
+                  "server address host:port, or dns:///name:port to balance "
+                  "over every address of a headless service")
+      ->envname("DOT_SERVER")
+      ->capture_default_str()
+      ->group("Connection");
+  app->add_option("--tls-ca", f->tls_ca, "PEM CA bundle: connect with TLS")
+      ->envname("DOT_TLS_CA")
+      ->group("Connection");
+  app->add_option("--tls-cert", f->tls_cert,
+                  "PEM client certificate (mutual TLS)")
+      ->envname("DOT_TLS_CERT")
+      ->group("Connection");
+  app->add_option("--tls-key", f->tls_key, "PEM client key (mutual TLS)")
+      ->envname("DOT_TLS_KEY")
+      ->group("Connection");
+  app->add_option("--tls-server-name", f->tls_server_name,
+                  "name to expect in the server certificate")
+      ->group("Connection");
+  app->add_option("--timeout", f->timeout_s, "deadline of each call, seconds")
+      ->capture_default_str()
+      ->group("Connection");
+}
+
+namespace {
+std::string ReadFile(const std::string& path, std::string* error) {
+  std::ifstream in(path);
+  if (!in) *error = "cannot read '" + path + "'";
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+std::shared_ptr<grpc::Channel> MakeChannel(const ConnectionFlags& f,
+                                           std::string* error) {
+  std::shared_ptr<grpc::ChannelCredentials> creds;
+  if (f.tls_ca.empty()) {
+    creds = grpc::InsecureChannelCredentials();
+  } else {
+    grpc::SslCredentialsOptions o;
+    o.pem_root_certs = ReadFile(f.tls_ca, error);
+    if (!f.tls_cert.empty()) {
+      o.pem_cert_chain = ReadFile(f.tls_cert, error);
+      o.pem_private_key = ReadFile(f.tls_key, error);
+    }
+    if (!error->empty()) return nullptr;
+    creds = grpc::SslCredentials(o);
+  }
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(64 << 20);
+  args.SetMaxSendMessageSize(64 << 20);
+  if (!f.tls_server_name.empty()) {
+    args.SetSslTargetNameOverride(f.tls_server_name);
+  }
+  // Retries: UNAVAILABLE (a replica draining or gone) is safe to retry, the
+  // call having done nothing. Round robin spreads calls over every address
+  // the name resolves to (one per pod behind a headless Service).
+  args.SetServiceConfigJSON(R"({
+    "loadBalancingConfig": [{"round_robin": {}}],
+    "methodConfig": [{
+      "name": [{"service": "dot.v1.Triangulator"}],
+      "retryPolicy": {
+        "maxAttempts": 5,
+        "initialBackoff": "0.05s",
+        "maxBackoff": "1s",
+        "backoffMultiplier": 2,
+        "retryableStatusCodes": ["UNAVAILABLE"]
+      }
+    }]
+  })");
+  return grpc::CreateCustomChannel(f.server, creds, args);
+}
+
+}  // namespace dot::client

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Flags shared by the subcommands that send polygons: metric weights and
+// options, and the connection to the server.
+#ifndef DOT_CLIENT_REQUEST_FLAGS_H_
+#define DOT_CLIENT_REQUEST_FLAGS_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "dot/dot.h"
+#include "dot/v1/triangulation.pb.h"
+
+namespace CLI {
+class App;
+}
+
+namespace dot::client {
+
+struct RequestFlags {
+  MetricWeights weights;
+  std::string space = "auto";
+  bool protect_edges = false;
+  bool validate = false;
+  uint32_t time_budget_ms = 0;
+  bool omit_input_vertices = true;
+
+  v1::Options ToOptions() const;
+};
+void AddRequestFlags(CLI::App* cmd, RequestFlags* flags);
+
+struct ConnectionFlags {
+  std::string server = "localhost:50051";
+  std::string tls_ca;    // enables TLS
+  std::string tls_cert;  // client certificate for mutual TLS
+  std::string tls_key;
+  std::string tls_server_name;  // override the name checked in the cert
+  double timeout_s = 120;
+};
+void AddConnectionFlags(CLI::App* app, ConnectionFlags* flags);
+
+// A channel with the retry policy (UNAVAILABLE is retried on another
+// connection) and round-robin balancing over every resolved address.
+std::shared_ptr<grpc::Channel> MakeChannel(const ConnectionFlags& flags,
+                                           std::string* error);
+
+}  // namespace dot::client
+
+#endif  // DOT_CLIENT_REQUEST_FLAGS_H_

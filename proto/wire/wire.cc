@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "wire.h"
+
+#include <algorithm>
+
+namespace dot::wire {
+namespace {
+
+Status Invalid(std::string m) {
+  return MakeStatus(StatusCode::kInvalidArgument, std::move(m));
+}
+
+}  // namespace
+
+MetricValues FromWire(const v1::MetricWeights& w) {
+  MetricValues v;
+  v[Metric::kArea] = w.area();
+  v[Metric::kPerimeter] = w.perimeter();
+  v[Metric::kNormalDeviation] = w.normal_deviation();
+  v[Metric::kShape] = w.shape();
+  v[Metric::kDihedral] = w.dihedral();
+  v[Metric::kSquaredDihedral] = w.squared_dihedral();
+  return v;
+}
+
+v1::MetricWeights ToWire(const MetricValues& v) {
+  v1::MetricWeights w;
+  w.set_area(v[Metric::kArea]);
+  w.set_perimeter(v[Metric::kPerimeter]);
+  w.set_normal_deviation(v[Metric::kNormalDeviation]);
+  w.set_shape(v[Metric::kShape]);
+  w.set_dihedral(v[Metric::kDihedral]);
+  w.set_squared_dihedral(v[Metric::kSquaredDihedral]);
+  return w;
+}
+
+SearchSpace FromWire(v1::SearchSpace s) {
+  switch (s) {
+    case v1::SEARCH_SPACE_DELAUNAY:
+      return SearchSpace::kDelaunay;
+    case v1::SEARCH_SPACE_ALL:
+      return SearchSpace::kAll;
+    default:
+      return SearchSpace::kAuto;
+  }
+}
+
+v1::Stage ToWire(Stage s) {
+  switch (s) {
+    case Stage::kValidate:
+      return v1::STAGE_VALIDATE;
+    case Stage::kDelaunay:
+      return v1::STAGE_DELAUNAY;
+    case Stage::kAdjacency:
+      return v1::STAGE_ADJACENCY;
+    case Stage::kDynamicProgram:
+      return v1::STAGE_DYNAMIC_PROGRAM;
+    case Stage::kTiling:
+      return v1::STAGE_TILING;
+  }
+  return v1::STAGE_UNSPECIFIED;
+}
+
+Status ProblemFromRequest(const v1::TriangulateRequest& request,
+                          Problem* problem, Options* options) {
+  const auto& c = request.polygon().coordinates();
+  if (c.size() % 3 != 0) {
+    return Invalid("polygon.coordinates has " + std::to_string(c.size()) +
+                   " values; expected 3 per vertex");
+  }
+  const auto& nm = request.polygon().normals();
+  if (!nm.empty() && nm.size() != c.size()) {
+    return Invalid("polygon.normals has " + std::to_string(nm.size()) +
+                   " values; expected none or " + std::to_string(c.size()));
+  }
+  if (request.options().search_space() < 0 ||
+      request.options().search_space() > v1::SEARCH_SPACE_ALL) {
+    return Invalid("options.search_space " +
+                   std::to_string(request.options().search_space()) +
+                   " is not a known search space");
+  }
+  problem->vertices.clear();
+  problem->normals.clear();
+  problem->vertices.reserve(c.size() / 3);
+  for (int i = 0; i + 2 < c.size(); i += 3) {
+    problem->vertices.push_back({c[i], c[i + 1], c[i + 2]});
+  }
+  for (int i = 0; i + 2 < nm.size(); i += 3) {
+    problem->normals.push_back({nm[i], nm[i + 1], nm[i + 2]});
+  }
+  problem->weights = FromWire(request.weights());
+  options->space = FromWire(request.options().search_space());
+  options->protect_edges = request.options().protect_edges();
+  options->validate_output = request.options().validate_output();
+  return OkStatus();
+}
+
+v1::TriangulateRequest MakeRequest(const std::string& id,
+                                   const PolygonData& polygon,
+                                   const MetricWeights& weights,
+                                   const v1::Options& options) {
+  v1::TriangulateRequest r;
+  r.set_id(id);
+  auto* c = r.mutable_polygon()->mutable_coordinates();
+  c->Reserve(static_cast<int>(3 * polygon.vertices.size()));
+  for (const Vec3& p : polygon.vertices) {
+    c->Add(p.x);
+    c->Add(p.y);
+    c->Add(p.z);
+  }
+  auto* nm = r.mutable_polygon()->mutable_normals();
+  for (const Vec3& n : polygon.normals) {
+    nm->Add(n.x);
+    nm->Add(n.y);
+    nm->Add(n.z);
+  }
+  *r.mutable_weights() = ToWire(weights);
+  *r.mutable_options() = options;
+  return r;
+}
+
+void FillSummary(const Result& r, v1::Summary* s) {
+  s->set_status(r.status.ok() ? v1::RESULT_STATUS_OK
+                              : v1::RESULT_STATUS_NO_TRIANGULATION);
+  s->set_message(r.status.message);
+  s->set_vertex_count(static_cast<uint32_t>(r.vertices.size()));
+  s->set_triangle_count(static_cast<uint32_t>(r.triangles.size()));
+  s->set_inserted_count(static_cast<uint32_t>(r.inserted.size()));
+  if (!r.inserted.empty()) {
+    s->mutable_loop()->Add(r.polygon.begin(), r.polygon.end());
+  }
+  for (const auto& [a, b] : r.non_delaunay_edges) {
+    s->add_non_delaunay_edges(a);
+    s->add_non_delaunay_edges(b);
+  }
+  s->set_total_cost(r.total_cost);
+  *s->mutable_metric_costs() = ToWire(r.metric_costs);
+  s->set_search_space_used(std::string(SpaceUsedName(r.space_used)));
+  s->set_solver(std::string(SolverName(r.solver)));
+  s->set_planar(r.planar);
+  s->set_intersecting_pairs(r.intersecting_pairs);
+  v1::Stats* st = s->mutable_stats();
+  st->set_n(r.stats.n);
+  st->set_tetrahedra(r.stats.tetrahedra);
+  st->set_delaunay_triangles(r.stats.delaunay_triangles);
+  st->set_search_triangles(r.stats.search_triangles);
+  st->set_adjacency_entries(r.stats.adjacency_entries);
+  st->set_dp_states(r.stats.dp_states);
+  st->set_table_bytes(r.stats.table_bytes);
+  st->set_validate_ms(r.stats.validate_ms);
+  st->set_delaunay_ms(r.stats.delaunay_ms);
+  st->set_adjacency_ms(r.stats.adjacency_ms);
+  st->set_dp_ms(r.stats.dp_ms);
+  st->set_tiling_ms(r.stats.tiling_ms);
+  st->set_total_ms(r.stats.total_ms);
+}
+
+bool ForEachMeshChunk(const Result& r, size_t first_vertex, size_t max_bytes,
+                      const std::function<bool(v1::MeshChunk&&)>& emit) {
+  // Packed doubles cost 8 bytes, packed uint32 indices at most 5.
+  const size_t vertices_per_chunk = std::max<size_t>(1, max_bytes / 24);
+  const size_t triangles_per_chunk = std::max<size_t>(1, max_bytes / 15);
+  for (size_t v = first_vertex; v < r.vertices.size();
+       v += vertices_per_chunk) {
+    v1::MeshChunk chunk;
+    chunk.set_first_vertex(static_cast<uint32_t>(v));
+    chunk.set_first_triangle(0);
+    const size_t end = std::min(r.vertices.size(), v + vertices_per_chunk);
+    chunk.mutable_vertices()->Reserve(static_cast<int>(3 * (end - v)));
+    for (size_t i = v; i < end; ++i) {
+      chunk.add_vertices(r.vertices[i].x);
+      chunk.add_vertices(r.vertices[i].y);
+      chunk.add_vertices(r.vertices[i].z);
+    }
+    if (!emit(std::move(chunk))) return false;
+  }
+  for (size_t t = 0; t < r.triangles.size(); t += triangles_per_chunk) {
+    v1::MeshChunk chunk;
+    chunk.set_first_vertex(static_cast<uint32_t>(r.vertices.size()));
+    chunk.set_first_triangle(static_cast<uint32_t>(t));
+    const size_t end = std::min(r.triangles.size(), t + triangles_per_chunk);
+    chunk.mutable_triangles()->Reserve(static_cast<int>(3 * (end - t)));
+    for (size_t i = t; i < end; ++i) {
+      for (int32_t v : r.triangles[i]) chunk.add_triangles(v);
+    }
+    if (!emit(std::move(chunk))) return false;
+  }
+  return true;
+}
+
+Status MeshAssembler::Add(const v1::MeshChunk& chunk) {
+  if (chunk.vertices_size() % 3 != 0 || chunk.triangles_size() % 3 != 0) {
+    return Invalid("mesh chunk with a partial vertex or triangle");
+  }
+  if (chunk.vertices_size() > 0) {
+    if (!started_) {
+      started_ = true;
+      first_vertex_ = chunk.first_vertex();
+    }
+    if (chunk.first_vertex() != first_vertex_ + vertices_.size()) {
+      return Invalid("mesh chunk out of order: vertex " +
+                     std::to_string(chunk.first_vertex()) + " after " +
+                     std::to_string(first_vertex_ + vertices_.size()));
+    }
+    for (int i = 0; i < chunk.vertices_size(); i += 3) {
+      vertices_.push_back(
+          {chunk.vertices(i), chunk.vertices(i + 1), chunk.vertices(i + 2)});
+    }
+  }
+  if (chunk.triangles_size() > 0) {
+    if (chunk.first_triangle() != triangles_.size()) {
+      return Invalid("mesh chunk out of order: triangle " +
+                     std::to_string(chunk.first_triangle()) + " after " +
+                     std::to_string(triangles_.size()));
+    }
+    for (int i = 0; i < chunk.triangles_size(); i += 3) {
+      triangles_.push_back({static_cast<int32_t>(chunk.triangles(i)),
+                            static_cast<int32_t>(chunk.triangles(i + 1)),
+                            static_cast<int32_t>(chunk.triangles(i + 2))});
+    }
+  }
+  return OkStatus();
+}
+
+Status MeshAssembler::Finish(const v1::Summary& summary,
+                             const std::vector<Vec3>& input, MeshData* mesh) {
+  mesh->vertices.clear();
+  if (!started_) first_vertex_ = summary.vertex_count();
+  if (first_vertex_ > input.size()) {
+    return Invalid("mesh starts at vertex " + std::to_string(first_vertex_) +
+                   " but only " + std::to_string(input.size()) +
+                   " input vertices are known");
+  }
+  mesh->vertices.assign(input.begin(), input.begin() + first_vertex_);
+  mesh->vertices.insert(mesh->vertices.end(), vertices_.begin(),
+                        vertices_.end());
+  mesh->triangles = std::move(triangles_);
+  if (mesh->vertices.size() != summary.vertex_count() ||
+      mesh->triangles.size() != summary.triangle_count()) {
+    return Invalid("incomplete mesh: " + std::to_string(mesh->vertices.size()) +
+                   " vertices and " + std::to_string(mesh->triangles.size()) +
+                   " triangles received, summary says " +
+                   std::to_string(summary.vertex_count()) + " and " +
+                   std::to_string(summary.triangle_count()));
+  }
+  for (const Triangle& t : mesh->triangles) {
+    for (int32_t v : t) {
+      if (v < 0 || static_cast<size_t>(v) >= mesh->vertices.size()) {
+        return Invalid("mesh triangle refers to vertex " + std::to_string(v));
+      }
+    }
+  }
+  return OkStatus();
+}
+
+grpc::StatusCode ToGrpcCode(StatusCode code) {
+  switch (code) {
+    case StatusCode::kOk:
+      return grpc::StatusCode::OK;
+    case StatusCode::kNoTriangulation:
+      return grpc::StatusCode::OK;
+    case StatusCode::kInvalidArgument:
+      return grpc::StatusCode::INVALID_ARGUMENT;
+    case StatusCode::kResourceExhausted:
+      return grpc::StatusCode::RESOURCE_EXHAUSTED;
+    case StatusCode::kCancelled:
+      return grpc::StatusCode::CANCELLED;
+    case StatusCode::kDeadlineExceeded:
+      return grpc::StatusCode::DEADLINE_EXCEEDED;
+    case StatusCode::kInternal:
+      return grpc::StatusCode::INTERNAL;
+  }
+  return grpc::StatusCode::UNKNOWN;
+}
+
+grpc::Status ToGrpcStatus(const Status& s) {
+  return {ToGrpcCode(s.code), s.message};
+}
+
+std::string_view GrpcCodeName(grpc::StatusCode code) {
+  switch (code) {
+    case grpc::StatusCode::OK:
+      return "OK";
+    case grpc::StatusCode::CANCELLED:
+      return "CANCELLED";
+    case grpc::StatusCode::UNKNOWN:
+      return "UNKNOWN";
+    case grpc::StatusCode::INVALID_ARGUMENT:
+      return "INVALID_ARGUMENT";
+    case grpc::StatusCode::DEADLINE_EXCEEDED:
+      return "DEADLINE_EXCEEDED";
+    case grpc::StatusCode::NOT_FOUND:
+      return "NOT_FOUND";
+    case grpc::StatusCode::ALREADY_EXISTS:
+      return "ALREADY_EXISTS";
+    case grpc::StatusCode::PERMISSION_DENIED:
+      return "PERMISSION_DENIED";
+    case grpc::StatusCode::RESOURCE_EXHAUSTED:
+      return "RESOURCE_EXHAUSTED";
+    case grpc::StatusCode::FAILED_PRECONDITION:
+      return "FAILED_PRECONDITION";
+    case grpc::StatusCode::ABORTED:
+      return "ABORTED";
+    case grpc::StatusCode::OUT_OF_RANGE:
+      return "OUT_OF_RANGE";
+    case grpc::StatusCode::UNIMPLEMENTED:
+      return "UNIMPLEMENTED";
+    case grpc::StatusCode::INTERNAL:
+      return "INTERNAL";
+    case grpc::StatusCode::UNAVAILABLE:
+      return "UNAVAILABLE";
+    case grpc::StatusCode::DATA_LOSS:
+      return "DATA_LOSS";
+    case grpc::StatusCode::UNAUTHENTICATED:
+      return "UNAUTHENTICATED";
+    default:
+      return "UNKNOWN";
+  }
+}
+
+}  // namespace dot::wire

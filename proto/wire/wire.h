@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Translation between the dot.v1 wire messages and the core library's types,
+// shared by server and client: requests to problems, results to summaries
+// and mesh chunks, chunks back to meshes, and status codes both ways.
+#ifndef DOT_PROTO_WIRE_H_
+#define DOT_PROTO_WIRE_H_
+
+#include <grpcpp/support/status.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "dot/dot.h"
+#include "dot/v1/triangulation.pb.h"
+
+namespace dot::wire {
+
+// Shape checks (coordinate counts) and the mapping itself; value checks
+// (finite, duplicates, ...) are the core's.
+Status ProblemFromRequest(const v1::TriangulateRequest& request,
+                          Problem* problem, Options* options);
+
+v1::TriangulateRequest MakeRequest(const std::string& id,
+                                   const PolygonData& polygon,
+                                   const MetricWeights& weights,
+                                   const v1::Options& options);
+
+v1::MetricWeights ToWire(const MetricValues& values);
+MetricValues FromWire(const v1::MetricWeights& w);
+SearchSpace FromWire(v1::SearchSpace s);
+v1::Stage ToWire(Stage s);
+
+void FillSummary(const Result& result, v1::Summary* summary);
+
+// Splits a result's mesh into chunks of at most about `max_bytes` each and
+// hands them to `emit` in order; returns false as soon as emit does.
+bool ForEachMeshChunk(const Result& result, size_t first_vertex,
+                      size_t max_bytes,
+                      const std::function<bool(v1::MeshChunk&&)>& emit);
+
+// Reassembles a mesh from chunks; the summary says how big it must be.
+class MeshAssembler {
+ public:
+  Status Add(const v1::MeshChunk& chunk);
+  // Checks completeness against the summary; vertices the server omitted
+  // (omit_input_vertices) are taken from `input`.
+  Status Finish(const v1::Summary& summary, const std::vector<Vec3>& input,
+                MeshData* mesh);
+
+ private:
+  std::vector<Vec3> vertices_;
+  std::vector<Triangle> triangles_;
+  size_t first_vertex_ = 0;
+  bool started_ = false;
+};
+
+grpc::StatusCode ToGrpcCode(StatusCode code);
+grpc::Status ToGrpcStatus(const Status& status);
+std::string_view GrpcCodeName(grpc::StatusCode code);
+
+}  // namespace dot::wire
+
+#endif  // DOT_PROTO_WIRE_H_

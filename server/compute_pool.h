@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Fixed-size thread pool with a bounded queue: TrySubmit refuses work when
+// the queue is full, so overload is answered at once instead of queued
+// without bound.
+#ifndef DOT_SERVER_COMPUTE_POOL_H_
+#define DOT_SERVER_COMPUTE_POOL_H_
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace dot::server {
+
+class ComputePool {
+ public:
+  ComputePool(int threads, int queue_capacity);
+  ~ComputePool();  // runs what is queued, then joins
+  ComputePool(const ComputePool&) = delete;
+  ComputePool& operator=(const ComputePool&) = delete;
+
+  // False when `queue_capacity` tasks are already waiting.
+  bool TrySubmit(std::function<void()> task);
+  int queued() const;
+  int busy() const;
+  int threads() const { return static_cast<int>(workers_.size()); }
+
+ private:
+  void Work();
+  const int capacity_;
+  mutable std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::function<void()>> queue_;
+  int busy_ = 0;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_COMPUTE_POOL_H_

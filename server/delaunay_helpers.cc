@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "delaunay_helpers.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+extern char** environ;
+
+namespace dot::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Status Internal(std::string m) {
+  return MakeStatus(StatusCode::kInternal, std::move(m));
+}
+
+bool WriteAll(int fd, const void* data, size_t len) {
+  const char* p = static_cast<const char*>(data);
+  while (len > 0) {
+    const ssize_t w = ::write(fd, p, len);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    len -= static_cast<size_t>(w);
+  }
+  return true;
+}
+
+// Blocking read of exactly `len` bytes (helper side).
+bool ReadAll(int fd, void* data, size_t len) {
+  char* p = static_cast<char*>(data);
+  while (len > 0) {
+    const ssize_t r = ::read(fd, p, len);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) return false;
+    p += r;
+    len -= static_cast<size_t>(r);
+  }
+  return true;
+}
+
+}  // namespace
+
+int RunDelaunayHelper(int in_fd, int out_fd) {
+  for (;;) {
+    uint64_t n = 0;
+    if (!ReadAll(in_fd, &n, sizeof n)) return 0;  // the server closed the pipe
+    std::vector<double> coords(3 * n);
+    if (!ReadAll(in_fd, coords.data(), coords.size() * sizeof(double)))
+      return 1;
+    std::vector<Vec3> points(n);
+    for (uint64_t i = 0; i < n; ++i) {
+      points[i] = {coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
+    }
+    Tetrahedralization t;
+    const Status s = TetgenTetrahedralize(points, &t);
+    const int32_t code = static_cast<int32_t>(s.code);
+    const auto len = static_cast<uint32_t>(s.message.size());
+    const uint64_t count = s.ok() ? t.tets.size() : 0;
+    if (!WriteAll(out_fd, &code, sizeof code) ||
+        !WriteAll(out_fd, &len, sizeof len) ||
+        !WriteAll(out_fd, s.message.data(), len) ||
+        !WriteAll(out_fd, &count, sizeof count) ||
+        !WriteAll(out_fd, t.tets.data(), count * sizeof(t.tets[0])) ||
+        !WriteAll(out_fd, t.neighbors.data(), count * sizeof(t.neighbors[0]))) {
+      return 1;
+    }
+  }
+}
+
+DelaunayHelperPool::DelaunayHelperPool(HelperConfig config)
+    : config_(std::move(config)), helpers_(std::max(1, config_.count)) {
+  // A helper that dies mid-request must surface as EPIPE, not kill us.
+  ::signal(SIGPIPE, SIG_IGN);
+}
+
+DelaunayHelperPool::~DelaunayHelperPool() {
+  std::lock_guard<std::mutex> lock(mu_);
+  for (Helper& h : helpers_) Kill(&h);
+}
+
+std::vector<pid_t> DelaunayHelperPool::Pids() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  std::vector<pid_t> pids;
+  for (const Helper& h : helpers_) {
+    if (h.pid > 0) pids.push_back(h.pid);
+  }
+  return pids;
+}
+
+Status DelaunayHelperPool::Spawn(Helper* h) {
+  int to[2], from[2];
+  if (::pipe2(to, O_CLOEXEC) != 0) return Internal("pipe failed");
+  if (::pipe2(from, O_CLOEXEC) != 0) {
+    ::close(to[0]);
+    ::close(to[1]);
+    return Internal("pipe failed");
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, to[0], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, from[1], STDOUT_FILENO);
+  const std::string limit = std::to_string(config_.memory_limit_bytes);
+  std::vector<char*> argv = {const_cast<char*>(config_.executable.c_str()),
+                             const_cast<char*>("--memory-limit-bytes"),
+                             const_cast<char*>(limit.c_str()), nullptr};
+  pid_t pid = -1;
+  const int rc = ::posix_spawn(&pid, config_.executable.c_str(), &actions,
+                               nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(to[0]);
+  ::close(from[1]);
+  if (rc != 0) {
+    ::close(to[1]);
+    ::close(from[0]);
+    return Internal("cannot start Delaunay helper '" + config_.executable +
+                    "': " + std::strerror(rc));
+  }
+  h->pid = pid;
+  h->to_child = to[1];
+  h->from_child = from[0];
+  return OkStatus();
+}
+
+int DelaunayHelperPool::Kill(Helper* h) {
+  int status = 0;
+  if (h->pid > 0) {
+    ::kill(h->pid, SIGKILL);
+    ::waitpid(h->pid, &status, 0);
+  }
+  if (h->to_child >= 0) ::close(h->to_child);
+  if (h->from_child >= 0) ::close(h->from_child);
+  h->pid = -1;
+  h->to_child = h->from_child = -1;
+  return status;
+}
+
+Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
+                                          Tetrahedralization* out,
+                                          const std::atomic<bool>* cancel,
+                                          Clock::time_point deadline) {
+  Helper* h = nullptr;
+  {
+    std::unique_lock<std::mutex> lock(mu_);
+    free_.wait(lock, [this] {
+      for (const Helper& x : helpers_)
+        if (!x.busy) return true;
+      return false;
+    });
+    for (Helper& x : helpers_) {
+      if (!x.busy) {
+        h = &x;
+        break;
+      }
+    }
+    h->busy = true;
+  }
+  Status s = OkStatus();
+  if (h->pid < 0) {
+    s = Spawn(h);
+    if (s.ok()) ++starts_;
+  }
+  if (s.ok()) s = Exchange(h, points, out, cancel, deadline);
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    h->busy = false;
+  }
+  free_.notify_one();
+  return s;
+}
+
+Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
+                                    Tetrahedralization* out,
+                                    const std::atomic<bool>* cancel,
+                                    Clock::time_point deadline) {
+  auto died = [&](const std::string& what) {
+    const int status = Kill(h);
+    std::string why = what;
+    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL) {
+      why += " (signal " + std::to_string(WTERMSIG(status)) + ", " +
+             strsignal(WTERMSIG(status)) + ")";
+    }
+    return Internal(why);
+  };
+  const uint64_t n = points.size();
+  if (!WriteAll(h->to_child, &n, sizeof n) ||
+      !WriteAll(h->to_child, points.data(), n * sizeof(Vec3))) {
+    return died("the Delaunay helper process died");
+  }
+  // Reads `len` bytes, polling so that a cancel or deadline kills the helper.
+  auto read = [&](void* data, size_t len) -> Status {
+    char* p = static_cast<char*>(data);
+    while (len > 0) {
+      if (cancel != nullptr && cancel->load()) {
+        Kill(h);
+        return MakeStatus(StatusCode::kCancelled, "cancelled by the caller");
+      }
+      if (Clock::now() >= deadline) {
+        Kill(h);
+        return MakeStatus(StatusCode::kDeadlineExceeded,
+                          "deadline exceeded during the Delaunay step");
+      }
+      pollfd pfd{h->from_child, POLLIN, 0};
+      const int ready = ::poll(&pfd, 1, 10);
+      if (ready < 0 && errno != EINTR) return died("poll failed");
+      if (ready <= 0) continue;
+      const ssize_t r = ::read(h->from_child, p, len);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) {
+        return died("the Delaunay helper process died on this input");
+      }
+      p += r;
+      len -= static_cast<size_t>(r);
+    }
+    return OkStatus();
+  };
+  int32_t code = 0;
+  uint32_t len = 0;
+  uint64_t count = 0;
+  Status s = read(&code, sizeof code);
+  if (s.ok()) s = read(&len, sizeof len);
+  std::string message(s.ok() ? len : 0, '\0');
+  if (s.ok()) s = read(message.data(), len);
+  if (s.ok()) s = read(&count, sizeof count);
+  if (!s.ok()) return s;
+  out->tets.resize(count);
+  out->neighbors.resize(count);
+  s = read(out->tets.data(), count * sizeof(out->tets[0]));
+  if (s.ok())
+    s = read(out->neighbors.data(), count * sizeof(out->neighbors[0]));
+  if (!s.ok()) return s;
+  if (code != 0) return MakeStatus(static_cast<StatusCode>(code), message);
+  return OkStatus();
+}
+
+}  // namespace dot::server

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// TetGen in helper processes. TetGen is neither thread-safe (file-scope
+// predicate state) nor crash-safe (it aborts or segfaults on some inputs),
+// so each tetrahedralization runs in a child process of its own from a small
+// pool: concurrent requests never share TetGen state, a crash fails only the
+// request that caused it, a cancel kills the child at once, and each child
+// is memory-capped with setrlimit. Dead children are restarted on demand.
+//
+// Pipe protocol (host byte order):
+//   request:  uint64 n, then n * 3 doubles
+//   response: int32 status code, uint32 message length, message bytes,
+//             uint64 t, then t * 4 int32 corners and t * 4 int32 neighbours
+#ifndef DOT_SERVER_DELAUNAY_HELPERS_H_
+#define DOT_SERVER_DELAUNAY_HELPERS_H_
+
+#include <sys/types.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "dot/triangulate.h"
+
+namespace dot::server {
+
+struct HelperConfig {
+  std::string executable;  // the dot-delaunay-helper binary
+  int count = 2;
+  int64_t memory_limit_bytes = int64_t{4} << 30;
+};
+
+class DelaunayHelperPool {
+ public:
+  explicit DelaunayHelperPool(HelperConfig config);
+  ~DelaunayHelperPool();  // kills the helpers
+  DelaunayHelperPool(const DelaunayHelperPool&) = delete;
+  DelaunayHelperPool& operator=(const DelaunayHelperPool&) = delete;
+
+  // Blocks for a free helper; kCancelled / kDeadlineExceeded kill it.
+  Status Tetrahedralize(const std::vector<Vec3>& points,
+                        Tetrahedralization* out,
+                        const std::atomic<bool>* cancel,
+                        std::chrono::steady_clock::time_point deadline);
+  int64_t starts() const { return starts_; }  // helper processes started
+  std::vector<pid_t> Pids() const;            // running helpers, for tests
+
+ private:
+  struct Helper {
+    pid_t pid = -1;
+    int to_child = -1, from_child = -1;
+    bool busy = false;
+  };
+  Status Spawn(Helper* h);
+  int Kill(Helper* h);  // returns the wait status
+  Status Exchange(Helper* h, const std::vector<Vec3>& points,
+                  Tetrahedralization* out, const std::atomic<bool>* cancel,
+                  std::chrono::steady_clock::time_point deadline);
+
+  const HelperConfig config_;
+  mutable std::mutex mu_;
+  std::condition_variable free_;
+  std::vector<Helper> helpers_;
+  std::atomic<int64_t> starts_{0};
+};
+
+// The helper process's main loop: serve requests from `in_fd` until EOF.
+int RunDelaunayHelper(int in_fd, int out_fd);
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_DELAUNAY_HELPERS_H_

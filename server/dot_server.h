@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// A running dot server: gRPC (Triangulator, health, reflection), the compute
+// pool, Delaunay helpers and metrics, wired from a ServerConfig. Used by
+// main() and, in-process on loopback, by the integration tests.
+#ifndef DOT_SERVER_DOT_SERVER_H_
+#define DOT_SERVER_DOT_SERVER_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "compute_pool.h"
+#include "config.h"
+#include "delaunay_helpers.h"
+#include "server_metrics.h"
+#include "triangulator_service.h"
+
+namespace dot::server {
+
+class DotServer {
+ public:
+  // Null with `error` set when the configuration or a port is unusable.
+  static std::unique_ptr<DotServer> Start(ServerConfig config,
+                                          std::string* error);
+  ~DotServer();
+
+  int port() const { return port_; }
+  // Graceful stop: health NOT_SERVING, new requests refused, in-flight work
+  // given `grace` to finish, then cancelled; the gRPC server shut down.
+  void Drain(std::chrono::milliseconds grace);
+
+  TriangulatorService& service() { return *service_; }
+  ServerMetrics& metrics() { return *metrics_; }
+  DelaunayHelperPool* helpers() { return helpers_.get(); }
+
+ private:
+  DotServer() = default;
+  ServerConfig config_;
+  std::unique_ptr<ServerMetrics> metrics_;
+  std::unique_ptr<DelaunayHelperPool> helpers_;
+  std::unique_ptr<ComputePool> pool_;
+  std::unique_ptr<TriangulatorService> service_;
+  std::unique_ptr<grpc::Server> server_;
+  int port_ = 0;
+  bool drained_ = false;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_DOT_SERVER_H_

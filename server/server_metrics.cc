@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "server_metrics.h"
+
+#include <prometheus/text_serializer.h>
+
+namespace dot::server {
+
+ServerMetrics::ServerMetrics(const std::string& bind, int port)
+    : registry_(std::make_shared<prometheus::Registry>()) {
+  requests_ = &prometheus::BuildCounter()
+                   .Name("dot_requests_total")
+                   .Help(
+                       "Requests (batch items count one each) by RPC and "
+                       "final status")
+                   .Register(*registry_);
+  latency_ = &prometheus::BuildHistogram()
+                  .Name("dot_request_duration_seconds")
+                  .Help("Time from arrival to the last byte of the answer")
+                  .Register(*registry_);
+  auto gauge = [this](const char* name, const char* help) {
+    return &prometheus::BuildGauge()
+                .Name(name)
+                .Help(help)
+                .Register(*registry_)
+                .Add({});
+  };
+  queue_depth_ = gauge("dot_queue_depth", "Requests waiting for a thread");
+  inflight_ = gauge("dot_inflight_requests", "Requests being served");
+  busy_threads_ = gauge("dot_busy_threads", "Compute threads at work");
+  helper_starts_ = gauge("dot_delaunay_helper_starts",
+                         "Delaunay helper processes started (restarts after "
+                         "crashes or cancels included)");
+  if (port > 0) {
+    exposer_ = std::make_unique<prometheus::Exposer>(bind + ":" +
+                                                     std::to_string(port));
+    exposer_->RegisterCollectable(registry_);
+  }
+}
+
+void ServerMetrics::RequestDone(const std::string& rpc,
+                                const std::string& status, double seconds) {
+  requests_->Add({{"rpc", rpc}, {"status", status}}).Increment();
+  static const prometheus::Histogram::BucketBoundaries kBuckets = {
+      0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
+      0.5,   1,      2.5,   5,    10,    30,   60};
+  latency_->Add({{"rpc", rpc}}, kBuckets).Observe(seconds);
+}
+
+std::string ServerMetrics::Scrape() const {
+  return prometheus::TextSerializer().Serialize(registry_->Collect());
+}
+
+}  // namespace dot::server

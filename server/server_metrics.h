@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Prometheus metrics of the server (prometheus-cpp), optionally exposed over
+// HTTP at /metrics.
+#ifndef DOT_SERVER_SERVER_METRICS_H_
+#define DOT_SERVER_SERVER_METRICS_H_
+
+#include <prometheus/counter.h>
+#include <prometheus/exposer.h>
+#include <prometheus/gauge.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
+#include <memory>
+#include <string>
+
+namespace dot::server {
+
+class ServerMetrics {
+ public:
+  // Exposes /metrics on bind:port unless port is 0.
+  ServerMetrics(const std::string& bind, int port);
+
+  void RequestDone(const std::string& rpc, const std::string& status,
+                   double seconds);
+  prometheus::Gauge& queue_depth() { return *queue_depth_; }
+  prometheus::Gauge& inflight() { return *inflight_; }
+  prometheus::Gauge& busy_threads() { return *busy_threads_; }
+  prometheus::Gauge& helper_starts() { return *helper_starts_; }
+  std::string Scrape() const;  // the text format, for tests and logs
+
+ private:
+  std::shared_ptr<prometheus::Registry> registry_;
+  std::unique_ptr<prometheus::Exposer> exposer_;
+  prometheus::Family<prometheus::Counter>* requests_;
+  prometheus::Family<prometheus::Histogram>* latency_;
+  prometheus::Gauge* queue_depth_;
+  prometheus::Gauge* inflight_;
+  prometheus::Gauge* busy_threads_;
+  prometheus::Gauge* helper_starts_;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_SERVER_METRICS_H_
