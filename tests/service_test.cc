@@ -1,0 +1,408 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Integration tests: a real server on loopback, real helper processes.
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <set>
+#include <thread>
+
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "remote_call.h"
+#include "service_fixture.h"
+
+namespace dot {
+namespace {
+
+using client::CallOutcome;
+using client::TriangulateRemote;
+using testing::CurveRequest;
+using testing::StartServer;
+using testing::Weights;
+using Clock = std::chrono::steady_clock;
+
+// The same problem solved in-process: what the server must return.
+Result LocalResult(const v1::TriangulateRequest& request) {
+  Problem p;
+  Options o;
+  EXPECT_TRUE(wire::ProblemFromRequest(request, &p, &o).ok());
+  return Triangulate(p, o);
+}
+
+void ExpectSameAsLocal(const v1::TriangulateRequest& request,
+                       const CallOutcome& out) {
+  ASSERT_TRUE(out.status.ok()) << out.status.error_message();
+  const Result local = LocalResult(request);
+  ASSERT_EQ(out.summary.status(), v1::RESULT_STATUS_OK)
+      << out.summary.message();
+  EXPECT_EQ(out.mesh.triangles, local.triangles);
+  EXPECT_EQ(out.mesh.vertices.size(), local.vertices.size());
+  EXPECT_DOUBLE_EQ(out.summary.total_cost(), local.total_cost);
+  std::vector<int32_t> loop(local.polygon);
+  const MeshReport report =
+      ValidateMesh(out.mesh.vertices, loop, out.mesh.triangles);
+  EXPECT_TRUE(report.valid()) << report.first_problem;
+}
+
+std::vector<Vec3> Input(const v1::TriangulateRequest& r) {
+  Problem p;
+  Options o;
+  EXPECT_TRUE(wire::ProblemFromRequest(r, &p, &o).ok());
+  return p.vertices;
+}
+
+TEST(ServiceTest, TriangulateWithEveryMetricMix) {
+  auto s = StartServer(testing::LoopbackConfig());
+  std::vector<MetricWeights> mixes = {
+      Weights(Metric::kArea), Weights(Metric::kPerimeter),
+      Weights(Metric::kSquaredDihedral), Weights(Metric::kDihedral, -0.5)};
+  MetricWeights combo = Weights(Metric::kArea);
+  combo[Metric::kSquaredDihedral] = 0.3;
+  combo[Metric::kShape] = 0.1;
+  mixes.push_back(combo);
+  for (Curve c : kPaperCurves) {
+    for (const MetricWeights& w : mixes) {
+      const auto request = CurveRequest(c, 120, w);
+      ExpectSameAsLocal(
+          request, TriangulateRemote(*s.stub, request, Input(request), 30));
+    }
+  }
+  // Normal deviation needs normals: a planar disk with normals up.
+  PolygonData disk;
+  for (int i = 0; i < 40; ++i) {
+    const double t = 6.283185307179586 * i / 40;
+    disk.vertices.push_back({std::cos(t), std::sin(t), 0.2 * std::sin(3 * t)});
+    disk.normals.push_back({0, 0, 1});
+  }
+  MetricWeights nd = Weights(Metric::kNormalDeviation);
+  nd[Metric::kArea] = 1;
+  const auto request = wire::MakeRequest("disk", disk, nd, {});
+  const CallOutcome out =
+      TriangulateRemote(*s.stub, request, disk.vertices, 30);
+  ExpectSameAsLocal(request, out);
+  EXPECT_GT(out.summary.metric_costs().normal_deviation(), 0);
+}
+
+TEST(ServiceTest, LargeResultArrivesWholeInSmallChunks) {
+  auto config = testing::LoopbackConfig();
+  config.chunk_kb = 64;  // forces dozens of chunks
+  auto s = StartServer(config);
+  // A client that accepts no message over 256 KiB still gets it all.
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(256 * 1024);
+  auto small = v1::Triangulator::NewStub(grpc::CreateCustomChannel(
+      s.address, grpc::InsecureChannelCredentials(), args));
+  auto request = CurveRequest(Curve::kMonkey, 100000, Weights(Metric::kArea));
+  grpc::ClientContext context;
+  auto reader = small->Triangulate(&context, request);
+  v1::TriangulateResponse msg;
+  int chunks = 0;
+  wire::MeshAssembler assembler;
+  v1::Summary summary;
+  while (reader->Read(&msg)) {
+    if (msg.has_mesh()) {
+      ++chunks;
+      EXPECT_LE(msg.ByteSizeLong(), 80u * 1024);
+      ASSERT_TRUE(assembler.Add(msg.mesh()).ok());
+    }
+    if (msg.has_summary()) summary = msg.summary();
+  }
+  ASSERT_TRUE(reader->Finish().ok());
+  EXPECT_GT(chunks, 50);
+  MeshData mesh;
+  ASSERT_TRUE(assembler.Finish(summary, Input(request), &mesh).ok());
+  EXPECT_EQ(mesh.triangles.size(), 99998u);
+  EXPECT_EQ(mesh.triangles, LocalResult(request).triangles);
+}
+
+TEST(ServiceTest, OmitInputVerticesSendsOnlyInsertedOnes) {
+  auto s = StartServer(testing::LoopbackConfig());
+  auto request = CurveRequest(Curve::kSpiral, 15, Weights(Metric::kArea));
+  request.mutable_options()->set_protect_edges(true);
+  request.mutable_options()->set_omit_input_vertices(true);
+  const CallOutcome out =
+      TriangulateRemote(*s.stub, request, Input(request), 30);
+  ASSERT_TRUE(out.status.ok()) << out.status.error_message();
+  EXPECT_GT(out.summary.inserted_count(), 0u);
+  EXPECT_EQ(out.summary.loop_size(),
+            static_cast<int>(out.mesh.vertices.size()));
+  ExpectSameAsLocal(request, out);
+}
+
+TEST(ServiceTest, BatchAnswersOutOfOrderWithIdsAndIsolatesFailures) {
+  auto s = StartServer(testing::LoopbackConfig());
+  grpc::ClientContext context;
+  auto stream = s.stub->TriangulateBatch(&context);
+  std::vector<v1::TriangulateRequest> sent;
+  // A slow polygon first, then quick ones, then a bad one.
+  sent.push_back(CurveRequest(Curve::kMoment, 1500,
+                              Weights(Metric::kSquaredDihedral), "slow"));
+  for (int i = 0; i < 6; ++i) {
+    sent.push_back(CurveRequest(kPaperCurves[i % 5], 60 + 10 * i,
+                                Weights(Metric::kArea),
+                                "quick-" + std::to_string(i)));
+  }
+  v1::TriangulateRequest bad = sent.back();
+  bad.set_id("bad");
+  bad.mutable_polygon()->add_coordinates(1.0);  // not a multiple of 3
+  sent.push_back(bad);
+  sent.push_back(
+      CurveRequest(Curve::kTrefoil, 80, Weights(Metric::kArea), "knot"));
+  for (const auto& r : sent) ASSERT_TRUE(stream->Write(r));
+  stream->WritesDone();
+  std::map<std::string, wire::MeshAssembler> assemblers;
+  std::vector<std::string> order;
+  std::map<std::string, v1::TriangulateResponse> last;
+  v1::TriangulateResponse msg;
+  while (stream->Read(&msg)) {
+    if (msg.has_mesh()) {
+      ASSERT_TRUE(assemblers[msg.id()].Add(msg.mesh()).ok());
+      continue;
+    }
+    order.push_back(msg.id());
+    last[msg.id()] = msg;
+    if (msg.has_summary() && msg.summary().status() == v1::RESULT_STATUS_OK) {
+      const auto& request =
+          *std::find_if(sent.begin(), sent.end(),
+                        [&](auto& r) { return r.id() == msg.id(); });
+      MeshData mesh;
+      ASSERT_TRUE(assemblers[msg.id()]
+                      .Finish(msg.summary(), Input(request), &mesh)
+                      .ok());
+      EXPECT_EQ(mesh.triangles, LocalResult(request).triangles) << msg.id();
+    }
+  }
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(order.size(), sent.size());
+  EXPECT_EQ(order.back(), "slow");  // finished last although sent first
+  ASSERT_TRUE(last["bad"].has_error());
+  EXPECT_EQ(last["bad"].error().code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(last["bad"].error().message().find("expected 3 per vertex"),
+            std::string::npos);
+  ASSERT_TRUE(last["knot"].has_summary());
+  EXPECT_EQ(last["knot"].summary().status(),
+            v1::RESULT_STATUS_NO_TRIANGULATION);
+  EXPECT_EQ(last["slow"].summary().status(), v1::RESULT_STATUS_OK);
+}
+
+TEST(ServiceTest, ErrorsAreStatusCodesNamingTheProblem) {
+  auto config = testing::LoopbackConfig();
+  config.max_vertices = 1000;
+  config.memory_budget_mb = 1;
+  auto s = StartServer(config);
+  auto call = [&](const v1::TriangulateRequest& r) {
+    return TriangulateRemote(*s.stub, r, Input(r), 30).status;
+  };
+  auto dup = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
+  for (int k = 0; k < 3; ++k) {
+    dup.mutable_polygon()->set_coordinates(
+        3 * 20 + k, dup.polygon().coordinates(3 * 7 + k));
+  }
+  grpc::Status st = call(dup);
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("vertex 20 repeats vertex 7"),
+            std::string::npos)
+      << st.error_message();
+
+  st = call(CurveRequest(Curve::kMonkey, 1001, Weights(Metric::kArea)));
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(st.error_message().find("accepts at most 1000"), std::string::npos);
+
+  st = call(CurveRequest(Curve::kMoment, 900, Weights(Metric::kArea)));
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(st.error_message().find("exceeds the budget"), std::string::npos);
+
+  auto slow =
+      CurveRequest(Curve::kTwist, 999, Weights(Metric::kSquaredDihedral));
+  slow.mutable_options()->set_time_budget_ms(30);
+  st = call(slow);
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  EXPECT_NE(st.error_message().find("compute time limit"), std::string::npos);
+  const CallOutcome timed_out = TriangulateRemote(
+      *s.stub, CurveRequest(Curve::kTwist, 999, Weights(Metric::kArea)), {},
+      0.03);
+  EXPECT_EQ(timed_out.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+}
+
+TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
+  auto config = testing::LoopbackConfig();
+  config.threads = 1;
+  config.delaunay_helpers = 1;
+  auto s = StartServer(config);
+  grpc::ClientContext context;
+  auto long_request =
+      CurveRequest(Curve::kTwist, 1501, Weights(Metric::kSquaredDihedral));
+  auto reader = s.stub->Triangulate(&context, long_request);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto cancelled_at = Clock::now();
+  context.TryCancel();
+  v1::TriangulateResponse msg;
+  while (reader->Read(&msg)) {
+  }
+  EXPECT_EQ(reader->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  const auto quick = CurveRequest(Curve::kMonkey, 100, Weights(Metric::kArea));
+  const CallOutcome out = TriangulateRemote(*s.stub, quick, Input(quick), 30);
+  ASSERT_TRUE(out.status.ok()) << out.status.error_message();
+  // The single worker was free within a fraction of the long run's ~2 s.
+  const double freed_ms =
+      std::chrono::duration<double, std::milli>(Clock::now() - cancelled_at)
+          .count();
+  EXPECT_LT(freed_ms, 500);
+  EXPECT_LT(out.summary.queue_ms(), 200);
+}
+
+TEST(ServiceTest, OverloadIsRefusedAtOnce) {
+  auto config = testing::LoopbackConfig();
+  config.threads = 1;
+  config.queue_size = 1;
+  auto s = StartServer(config);
+  auto slow =
+      CurveRequest(Curve::kMoment, 1200, Weights(Metric::kSquaredDihedral));
+  std::vector<std::future<grpc::Status>> calls;
+  for (int i = 0; i < 4; ++i) {
+    calls.push_back(std::async(std::launch::async, [&] {
+      return TriangulateRemote(*s.stub, slow, Input(slow), 60).status;
+    }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  int ok = 0, exhausted = 0;
+  for (auto& f : calls) {
+    const grpc::Status st = f.get();
+    if (st.ok()) ++ok;
+    if (st.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      ++exhausted;
+      EXPECT_NE(st.error_message().find("server at capacity"),
+                std::string::npos);
+    }
+  }
+  EXPECT_EQ(ok, 2);  // one running, one queued
+  EXPECT_EQ(exhausted, 2);
+}
+
+TEST(ServiceTest, DrainGoesNotServingAndFinishesInFlightWork) {
+  auto s = StartServer(testing::LoopbackConfig());
+  auto health = grpc::health::v1::Health::NewStub(s.channel);
+  auto check = [&] {
+    grpc::ClientContext c;
+    grpc::health::v1::HealthCheckResponse r;
+    EXPECT_TRUE(health->Check(&c, {}, &r).ok());
+    return r.status();
+  };
+  EXPECT_EQ(check(), grpc::health::v1::HealthCheckResponse::SERVING);
+  auto slow =
+      CurveRequest(Curve::kMoment, 1200, Weights(Metric::kSquaredDihedral));
+  auto in_flight = std::async(std::launch::async, [&] {
+    return TriangulateRemote(*s.stub, slow, Input(slow), 60);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::thread drain([&] { s.server->Drain(std::chrono::seconds(30)); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(check(), grpc::health::v1::HealthCheckResponse::NOT_SERVING);
+  const auto quick = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
+  EXPECT_EQ(
+      TriangulateRemote(*s.stub, quick, Input(quick), 5).status.error_code(),
+      grpc::StatusCode::UNAVAILABLE);
+  const CallOutcome done = in_flight.get();
+  EXPECT_TRUE(done.status.ok()) << done.status.error_message();
+  EXPECT_EQ(done.summary.status(), v1::RESULT_STATUS_OK);
+  drain.join();
+}
+
+TEST(ServiceTest, DrainCancelsWorkThatOutlivesTheGracePeriod) {
+  auto s = StartServer(testing::LoopbackConfig());
+  auto slow =
+      CurveRequest(Curve::kTwist, 2001, Weights(Metric::kSquaredDihedral));
+  auto in_flight = std::async(std::launch::async, [&] {
+    return TriangulateRemote(*s.stub, slow, Input(slow), 60);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const auto t0 = Clock::now();
+  s.server->Drain(std::chrono::milliseconds(100));
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 3.0);
+  EXPECT_FALSE(in_flight.get().status.ok());
+}
+
+TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
+  auto config = testing::LoopbackConfig();
+  config.threads = 1;
+  config.delaunay_helpers = 1;
+  auto s = StartServer(config);
+  const auto warm = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
+  ASSERT_TRUE(TriangulateRemote(*s.stub, warm, Input(warm), 30).status.ok());
+  const auto pids = s.server->helpers()->Pids();
+  ASSERT_EQ(pids.size(), 1u);
+  auto big = CurveRequest(Curve::kMoment, 3000, Weights(Metric::kArea));
+  auto victim = std::async(std::launch::async, [&] {
+    return TriangulateRemote(*s.stub, big, Input(big), 60);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // in TetGen
+  ASSERT_EQ(::kill(pids[0], SIGSEGV), 0);
+  const CallOutcome crashed = victim.get();
+  EXPECT_EQ(crashed.status.error_code(), grpc::StatusCode::INTERNAL);
+  EXPECT_NE(crashed.status.error_message().find("helper process died"),
+            std::string::npos)
+      << crashed.status.error_message();
+  const auto after = CurveRequest(Curve::kMobius, 300, Weights(Metric::kArea));
+  ExpectSameAsLocal(after, TriangulateRemote(*s.stub, after, Input(after), 30));
+  EXPECT_EQ(s.server->helpers()->starts(), 2);
+}
+
+TEST(ServiceTest, ConcurrentResultsEqualSequentialOnes) {
+  auto config = testing::LoopbackConfig();
+  config.threads = 4;
+  config.queue_size = 32;  // room for every request at once
+  auto s = StartServer(config);
+  std::vector<v1::TriangulateRequest> requests;
+  for (int i = 0; i < 24; ++i) {
+    MetricWeights w = Weights(i % 2 ? Metric::kArea : Metric::kSquaredDihedral);
+    requests.push_back(CurveRequest(kPaperCurves[i % 5], 100 + 37 * i, w,
+                                    "c" + std::to_string(i)));
+  }
+  std::vector<std::future<CallOutcome>> futures;
+  for (const auto& r : requests) {
+    futures.push_back(std::async(std::launch::async, [&s, &r] {
+      return TriangulateRemote(*s.stub, r, Input(r), 60);
+    }));
+  }
+  for (size_t i = 0; i < requests.size(); ++i) {
+    ExpectSameAsLocal(requests[i], futures[i].get());
+  }
+}
+
+TEST(ServiceTest, ServerInfoAndSource) {
+  const std::string archive =
+      (std::filesystem::temp_directory_path() / "dot-test-source.tar.gz")
+          .string();
+  {
+    std::ofstream out(archive, std::ios::binary);
+    out << std::string(600 * 1024, 'x');
+  }
+  auto config = testing::LoopbackConfig();
+  config.source_archive = archive;
+  config.source_url = "https://example.org/dot";
+  auto s = StartServer(config);
+  grpc::ClientContext c1;
+  v1::ServerInfo info;
+  ASSERT_TRUE(s.stub->GetServerInfo(&c1, {}, &info).ok());
+  EXPECT_EQ(info.license(), "AGPL-3.0-or-later");
+  EXPECT_EQ(info.source_url(), "https://example.org/dot");
+  EXPECT_EQ(info.limits().compute_threads(), 2u);
+  EXPECT_FALSE(info.version().empty());
+  grpc::ClientContext c2;
+  auto reader = s.stub->GetSource(&c2, {});
+  v1::SourceChunk chunk;
+  size_t bytes = 0;
+  while (reader->Read(&chunk)) bytes += chunk.data().size();
+  EXPECT_TRUE(reader->Finish().ok());
+  EXPECT_EQ(bytes, 600u * 1024);
+  std::filesystem::remove(archive);
+}
+
+}  // namespace
+}  // namespace dot
