@@ -1,0 +1,44 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+# dot-server and dotctl. Build: docker build . (or podman build
+# --network=host . where no registry is reachable).
+ARG DEBIAN=bookworm
+
+FROM debian:${DEBIAN} AS build
+RUN apt-get update \
+ && apt-get install -y --no-install-recommends \
+      cmake ninja-build g++ pkg-config \
+      libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler \
+      libtet1.5-dev libcgal-dev libspdlog-dev libcli11-dev prometheus-cpp-dev \
+ && rm -rf /var/lib/apt/lists/*
+WORKDIR /src
+COPY . .
+ARG DOT_COMMIT=unknown
+RUN cmake -S . -B /build -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DDOT_BUILD_TESTS=OFF -DDOT_BUILD_BENCH=OFF -DDOT_GIT_COMMIT=${DOT_COMMIT} \
+ && cmake --build /build \
+ && DESTDIR=/out cmake --install /build --prefix /usr/local --strip
+# The Corresponding Source, served to users by GetSource (AGPL-3.0 s. 13).
+RUN mkdir -p /out/usr/share/dot \
+ && tar --exclude=./.git -czf /out/usr/share/dot/dot-source.tar.gz .
+
+FROM debian:${DEBIAN}-slim
+RUN apt-get update \
+ && apt-get install -y --no-install-recommends \
+      libgrpc++1.51 libgrpc29 libprotobuf32 libabsl20220623 libre2-9 \
+      libc-ares2 libssl3 zlib1g libtet1.5 libgmp10 libspdlog1.10 libfmt9 \
+      libprometheus-cpp-core1.0 libprometheus-cpp-pull1.0 libcivetweb1 \
+ && rm -rf /var/lib/apt/lists/* \
+ && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin dot
+COPY --from=build /out/ /
+COPY LICENSE /usr/share/dot/LICENSE
+USER 10001
+ENV DOT_LISTEN=0.0.0.0:50051 \
+    DOT_METRICS_PORT=9090 \
+    DOT_LOG_LEVEL=info \
+    DOT_DRAIN_SECONDS=20 \
+    DOT_SERVER=127.0.0.1:50051
+EXPOSE 50051 9090
+HEALTHCHECK --interval=10s --timeout=4s --start-period=5s --retries=3 \
+  CMD ["dotctl", "health"]
+STOPSIGNAL SIGTERM
+ENTRYPOINT ["dot-server"]
