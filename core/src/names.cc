@@ -87,6 +87,22 @@ std::string_view SolverName(Solver s) {
   return "?";
 }
 
+std::string_view StageName(Stage s) {
+  switch (s) {
+    case Stage::kValidate:
+      return "validation";
+    case Stage::kDelaunay:
+      return "the Delaunay step";
+    case Stage::kAdjacency:
+      return "adjacency";
+    case Stage::kDynamicProgram:
+      return "the dynamic program";
+    case Stage::kTiling:
+      return "tiling";
+  }
+  return "?";
+}
+
 std::string_view CurveName(Curve c) {
   switch (c) {
     case Curve::kMonkey:

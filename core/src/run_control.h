@@ -4,6 +4,7 @@
 #define DOT_CORE_RUN_CONTROL_H_
 
 #include <chrono>
+#include <string>
 
 #include "dot/status.h"
 #include "dot/triangulate.h"
@@ -31,8 +32,9 @@ class RunTicker {
     }
     const auto now = std::chrono::steady_clock::now();
     if (now >= control_.deadline) {
-      status_ = MakeStatus(StatusCode::kDeadlineExceeded,
-                           "deadline exceeded during " + StageLabel());
+      status_ = MakeStatus(
+          StatusCode::kDeadlineExceeded,
+          "deadline exceeded during " + std::string(StageName(stage_)));
       return false;
     }
     if (control_.progress && fraction_done >= 0 &&
@@ -46,21 +48,6 @@ class RunTicker {
 
  private:
   static constexpr int kStride = 4096;
-  std::string StageLabel() const {
-    switch (stage_) {
-      case Stage::kValidate:
-        return "validation";
-      case Stage::kDelaunay:
-        return "the Delaunay step";
-      case Stage::kAdjacency:
-        return "adjacency";
-      case Stage::kDynamicProgram:
-        return "the dynamic program";
-      case Stage::kTiling:
-        return "tiling";
-    }
-    return "?";
-  }
   const Control& control_;
   Stage stage_;
   int count_ = 0;

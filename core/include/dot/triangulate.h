@@ -50,6 +50,7 @@ enum class Stage { kValidate, kDelaunay, kAdjacency, kDynamicProgram, kTiling };
 std::string_view SearchSpaceName(SearchSpace s);
 std::string_view SpaceUsedName(SpaceUsed s);
 std::string_view SolverName(Solver s);
+std::string_view StageName(Stage s);  // "the Delaunay step", ...
 
 struct Problem {
   std::vector<Vec3> vertices;  // polygon, closed from last to first
