@@ -15,11 +15,14 @@ if [ "$engine" = podman ] && ! command -v podman >/dev/null && [ -x ../shared/to
   ../shared/tools/container-env.sh >/dev/null
 fi
 build_flags=()
-[ "$engine" = podman ] && build_flags=(--network=host)
+# podman: host network for apt, Docker image format to keep HEALTHCHECK.
+[ "$engine" = podman ] && build_flags=(--network=host --format docker)
 image=localhost/dot-server:latest lb_image=localhost/dot-lb:latest
 names=(dot-smoke-1 dot-smoke-2 dot-smoke-3 dot-smoke-lb)
 say() { printf '\n== %s\n' "$*"; }
-cleanup() { "$engine" rm -f "${names[@]}" >/dev/null 2>&1 || true; }
+cleanup() {  # one at a time: podman's rm gives up on all if one is missing
+  for name in "${names[@]}"; do "$engine" rm -f -t 0 "$name" >/dev/null 2>&1 || true; done
+}
 trap cleanup EXIT
 cleanup
 
@@ -31,13 +34,13 @@ say "building images"
 
 say "starting 3 replicas and the load balancer"
 for i in 1 2 3; do
-  "$engine" run -d --rm --network=host --read-only --name "dot-smoke-$i" \
+  "$engine" run -d --rm --no-healthcheck --network=host --read-only --name "dot-smoke-$i" \
     -e DOT_LISTEN="127.0.0.1:5005$i" -e DOT_SERVER="127.0.0.1:5005$i" \
     -e DOT_METRICS_PORT="909$i" -e DOT_THREADS=1 -e DOT_LOG_LEVEL=warn \
     "$image" >/dev/null
 done
-"$engine" run -d --rm --network=host --name dot-smoke-lb "$lb_image" >/dev/null
-dotctl() { "$engine" run --rm --network=host --entrypoint dotctl "$image" "$@"; }
+"$engine" run -d --rm --no-healthcheck --network=host --name dot-smoke-lb "$lb_image" >/dev/null
+dotctl() { "$engine" run --rm --no-healthcheck --network=host --entrypoint dotctl "$image" "$@"; }
 for i in 1 2 3; do
   for _ in $(seq 100); do
     "$engine" exec "dot-smoke-$i" dotctl health >/dev/null 2>&1 && break
@@ -46,7 +49,9 @@ for i in 1 2 3; do
   echo "replica $i: $("$engine" exec "dot-smoke-$i" dotctl health)"
 done
 for _ in $(seq 50); do dotctl --server 127.0.0.1:8080 health >/dev/null 2>&1 && break; sleep 0.2; done
-echo "through the balancer: $(dotctl --server 127.0.0.1:8080 health)"
+if ! dotctl --server 127.0.0.1:8080 health; then
+  echo "FAIL: the balancer does not answer"; "$engine" logs dot-smoke-lb 2>&1 | tail -5; exit 1
+fi
 
 served() {  # requests replica $1 answered, from its Prometheus endpoint
   curl -s "127.0.0.1:909$1/metrics" |
@@ -54,8 +59,9 @@ served() {  # requests replica $1 answered, from its Prometheus endpoint
 }
 
 say "load through the balancer: 600 requests, concurrency 6, Monkey n=300"
-dotctl --server 127.0.0.1:8080 load -c 6 -r 600 -n 300 --squared-dihedral 1
 fail=0
+dotctl --server 127.0.0.1:8080 load -c 6 -r 600 -n 300 -d 120 --squared-dihedral 1 ||
+  { echo "FAIL: requests failed with every replica up"; fail=1; }
 for i in 1 2 3; do
   n=$(served "$i")
   echo "replica $i served $n requests"
@@ -64,7 +70,7 @@ done
 
 say "killing replica 2 (SIGKILL) during a second run of 1000 requests"
 report=$(mktemp)
-dotctl --server 127.0.0.1:8080 load -c 6 -r 1000 -n 300 --json >"$report" &
+dotctl --server 127.0.0.1:8080 load -c 6 -r 1000 -n 300 -d 120 --json >"$report" &
 load=$!
 sleep 1.5
 "$engine" kill --signal KILL dot-smoke-2 >/dev/null
