@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The dot-server binary itself: SIGTERM finishes in-flight work and exits 0.
+#include <arpa/inet.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <future>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "remote_call.h"
+#include "service_fixture.h"
+
+extern char** environ;
+
+namespace dot {
+namespace {
+
+int FreeLoopbackPort() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  socklen_t len = sizeof addr;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  ::close(fd);
+  return ntohs(addr.sin_port);
+}
+
+TEST(ServerProcessTest, SigtermDrainsInFlightWorkAndExitsZero) {
+  const std::string address = "127.0.0.1:" + std::to_string(FreeLoopbackPort());
+  std::vector<std::string> args = {DOT_SERVER_PATH,
+                                   "--listen",
+                                   address,
+                                   "--metrics-port",
+                                   "0",
+                                   "--source-archive",
+                                   "",
+                                   "--log-level",
+                                   "warn",
+                                   "--threads",
+                                   "1"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  ASSERT_EQ(::posix_spawn(&pid, DOT_SERVER_PATH, nullptr, nullptr, argv.data(),
+                          environ),
+            0);
+  auto channel =
+      grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+  ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
+                                        std::chrono::seconds(10)));
+  auto stub = v1::Triangulator::NewStub(channel);
+  auto slow = testing::CurveRequest(Curve::kMoment, 1200,
+                                    testing::Weights(Metric::kSquaredDihedral));
+  auto in_flight = std::async(std::launch::async, [&] {
+    return client::TriangulateRemote(*stub, slow,
+                                     MakeCurve(Curve::kMoment, 1200), 60);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  const client::CallOutcome out = in_flight.get();
+  EXPECT_TRUE(out.status.ok()) << out.status.error_message();
+  EXPECT_EQ(out.summary.status(), v1::RESULT_STATUS_OK);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+TEST(ServerProcessTest, ProgressIsStreamedForLongRuns) {
+  auto s = testing::StartServer(testing::LoopbackConfig());
+  auto request = testing::CurveRequest(
+      Curve::kTwist, 1501, testing::Weights(Metric::kSquaredDihedral));
+  request.mutable_options()->set_progress_interval_ms(20);
+  std::vector<v1::Progress> seen;
+  const client::CallOutcome out = client::TriangulateRemote(
+      *s.stub, request, MakeCurve(Curve::kTwist, 1501), 60,
+      [&](const v1::Progress& p) { seen.push_back(p); });
+  ASSERT_TRUE(out.status.ok()) << out.status.error_message();
+  ASSERT_GE(seen.size(), 2u);
+  for (size_t i = 1; i < seen.size(); ++i) {
+    EXPECT_GE(seen[i].elapsed_ms(), seen[i - 1].elapsed_ms());
+    EXPECT_GE(seen[i].stage(), seen[i - 1].stage());
+  }
+}
+
+}  // namespace
+}  // namespace dot
