@@ -19,9 +19,11 @@ build_flags=()
 [ "$engine" = podman ] && build_flags=(--network=host --format docker)
 image=localhost/dot-server:latest lb_image=localhost/dot-lb:latest
 names=(dot-smoke-1 dot-smoke-2 dot-smoke-3 dot-smoke-lb)
+network=dot-smoke
 say() { printf '\n== %s\n' "$*"; }
 cleanup() {  # one at a time: podman's rm gives up on all if one is missing
   for name in "${names[@]}"; do "$engine" rm -f -t 0 "$name" >/dev/null 2>&1 || true; done
+  "$engine" network rm "$network" >/dev/null 2>&1 || true
 }
 trap cleanup EXIT
 cleanup
@@ -32,14 +34,15 @@ say "building images"
 "$engine" build "${build_flags[@]}" -q -t "$lb_image" deploy/nginx >/dev/null
 "$engine" image ls --format '{{.Repository}}:{{.Tag}} {{.Size}}' | grep -E 'dot-(server|lb)'
 
-say "starting 3 replicas and the load balancer"
+say "starting 3 replicas and the load balancer (the topology of compose.yaml)"
+"$engine" network create "$network" >/dev/null
 for i in 1 2 3; do
-  "$engine" run -d --rm --no-healthcheck --network=host --read-only --name "dot-smoke-$i" \
-    -e DOT_LISTEN="127.0.0.1:5005$i" -e DOT_SERVER="127.0.0.1:5005$i" \
-    -e DOT_METRICS_PORT="909$i" -e DOT_THREADS=1 -e DOT_LOG_LEVEL=warn \
-    "$image" >/dev/null
+  "$engine" run -d --rm --no-healthcheck --read-only --name "dot-smoke-$i" \
+    --network "$network" --network-alias "dot-$i" -p "127.0.0.1:909$i:9090" \
+    -e DOT_THREADS=1 -e DOT_LOG_LEVEL=warn "$image" >/dev/null
 done
-"$engine" run -d --rm --no-healthcheck --network=host --name dot-smoke-lb "$lb_image" >/dev/null
+"$engine" run -d --rm --no-healthcheck --name dot-smoke-lb --network "$network" \
+  -p 127.0.0.1:8080:8080 "$lb_image" >/dev/null
 dotctl() { "$engine" run --rm --no-healthcheck --network=host --entrypoint dotctl "$image" "$@"; }
 for i in 1 2 3; do
   for _ in $(seq 100); do

@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <new>
 
 extern char** environ;
 
@@ -61,7 +62,15 @@ int RunDelaunayHelper(int in_fd, int out_fd) {
       points[i] = {coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
     }
     Tetrahedralization t;
-    const Status s = TetgenTetrahedralize(points, &t);
+    Status s;
+    try {
+      s = TetgenTetrahedralize(points, &t);
+    } catch (const std::bad_alloc&) {  // copying TetGen's output
+      t = {};
+      s = MakeStatus(StatusCode::kResourceExhausted,
+                     "the Delaunay step ran out of memory on " +
+                         std::to_string(n) + " points");
+    }
     const int32_t code = static_cast<int32_t>(s.code);
     const auto len = static_cast<uint32_t>(s.message.size());
     const uint64_t count = s.ok() ? t.tets.size() : 0;

@@ -353,6 +353,26 @@ TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
   EXPECT_EQ(s.server->helpers()->starts(), 2);
 }
 
+TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ASan builds cannot cap a helper's address space";
+#endif
+  auto config = testing::LoopbackConfig();
+  config.threads = 1;
+  config.delaunay_helpers = 1;
+  config.helper_memory_mb = 100;
+  auto s = StartServer(config);
+  // About 2 million tetrahedra: far more than 100 MiB inside TetGen.
+  const auto big = CurveRequest(Curve::kMoment, 2000, Weights(Metric::kArea));
+  const grpc::Status st =
+      TriangulateRemote(*s.stub, big, Input(big), 60).status;
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(st.error_message().find("ran out of memory"), std::string::npos)
+      << st.error_message();
+  const auto small = CurveRequest(Curve::kMonkey, 200, Weights(Metric::kArea));
+  ExpectSameAsLocal(small, TriangulateRemote(*s.stub, small, Input(small), 30));
+}
+
 TEST(ServiceTest, ConcurrentResultsEqualSequentialOnes) {
   auto config = testing::LoopbackConfig();
   config.threads = 4;

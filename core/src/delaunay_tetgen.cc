@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include <algorithm>
 #include <mutex>
+#include <new>
 
 #include "delaunay.h"
 #include "tetgen.h"  // needs TETLIBRARY (set by TetGen::TetGen) to throw
@@ -32,9 +33,20 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
   }
   try {
     tetrahedralize(&b, &in, &out);
+  } catch (const std::bad_alloc&) {
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "TetGen ran out of memory on " +
+                          std::to_string(points.size()) + " points");
   } catch (int code) {
+    // TetGen's terminatetetgen() codes.
+    if (code == 1) {
+      return MakeStatus(StatusCode::kResourceExhausted,
+                        "TetGen ran out of memory on " +
+                            std::to_string(points.size()) + " points");
+    }
     return MakeStatus(StatusCode::kInternal,
-                      "TetGen failed with error code " + std::to_string(code));
+                      "TetGen failed with error code " + std::to_string(code) +
+                          (code == 2 ? " (internal error)" : ""));
   } catch (...) {
     return MakeStatus(StatusCode::kInternal, "TetGen failed");
   }
