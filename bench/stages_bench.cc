@@ -10,14 +10,18 @@ namespace dot {
 namespace {
 
 void BM_Tetrahedralize(benchmark::State& state) {
-  const auto points = MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0)));
+  const auto points =
+      MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0)));
   for (auto _ : state) {
     Tetrahedralization t;
     benchmark::DoNotOptimize(TetgenTetrahedralize(points, &t));
   }
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_Tetrahedralize)->RangeMultiplier(4)->Range(256, 16384)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Tetrahedralize)
+    ->RangeMultiplier(4)
+    ->Range(256, 16384)
+    ->Unit(benchmark::kMillisecond);
 
 void Solve(benchmark::State& state, Curve curve, Metric metric) {
   Problem p{MakeCurve(curve, static_cast<int>(state.range(0))), {}, {}};
@@ -35,15 +39,32 @@ void Solve(benchmark::State& state, Curve curve, Metric metric) {
   state.counters["table_MiB"] = last.table_bytes / 1048576.0;
 }
 
-void BM_Dot1Monkey(benchmark::State& s) { Solve(s, Curve::kMonkey, Metric::kArea); }
-void BM_Dot2Monkey(benchmark::State& s) { Solve(s, Curve::kMonkey, Metric::kSquaredDihedral); }
-void BM_Dot2Twist(benchmark::State& s) { Solve(s, Curve::kTwist, Metric::kSquaredDihedral); }
-BENCHMARK(BM_Dot1Monkey)->RangeMultiplier(4)->Range(256, 16384)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Dot2Monkey)->RangeMultiplier(4)->Range(256, 16384)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Dot2Twist)->Arg(251)->Arg(501)->Arg(1001)->Unit(benchmark::kMillisecond);
+void BM_Dot1Monkey(benchmark::State& s) {
+  Solve(s, Curve::kMonkey, Metric::kArea);
+}
+void BM_Dot2Monkey(benchmark::State& s) {
+  Solve(s, Curve::kMonkey, Metric::kSquaredDihedral);
+}
+void BM_Dot2Twist(benchmark::State& s) {
+  Solve(s, Curve::kTwist, Metric::kSquaredDihedral);
+}
+BENCHMARK(BM_Dot1Monkey)
+    ->RangeMultiplier(4)
+    ->Range(256, 16384)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Dot2Monkey)
+    ->RangeMultiplier(4)
+    ->Range(256, 16384)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Dot2Twist)
+    ->Arg(251)
+    ->Arg(501)
+    ->Arg(1001)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Validate(benchmark::State& state) {
-  Problem p{MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0))), {}, {}};
+  Problem p{
+      MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0))), {}, {}};
   const Result r = Triangulate(p);
   for (auto _ : state) {
     benchmark::DoNotOptimize(ValidateMesh(r.vertices, r.polygon, r.triangles));
