@@ -66,13 +66,13 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
   cmd->callback([flags, ctx] {
     std::string error;
     const auto files = ExpandInputs(flags->inputs, &error);
-    auto channel =
-        error.empty() ? MakeChannel(ctx->connection, &error) : nullptr;
-    if (!channel) {
+    if (!error.empty()) {
       std::cerr << "dotctl: " << error << "\n";
       ctx->exit_code = kExitUsage;
       return;
     }
+    auto channel = ChannelOrReport(ctx);
+    if (!channel) return;
     if (!flags->output.empty())
       std::filesystem::create_directories(flags->output);
     std::map<std::string, Pending> pending;

@@ -14,16 +14,6 @@
 namespace dot::client {
 namespace {
 
-std::shared_ptr<grpc::Channel> Channel(Context* ctx) {
-  std::string error;
-  auto channel = MakeChannel(ctx->connection, &error);
-  if (!channel) {
-    std::cerr << "dotctl: " << error << "\n";
-    ctx->exit_code = kExitUsage;
-  }
-  return channel;
-}
-
 void SetDeadline(grpc::ClientContext* context, double seconds) {
   context->set_deadline(
       std::chrono::system_clock::now() +
@@ -46,7 +36,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
   cmd->add_option("--health-timeout", *timeout, "seconds to wait")
       ->capture_default_str();
   cmd->callback([ctx, service, timeout] {
-    auto channel = Channel(ctx);
+    auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = grpc::health::v1::Health::NewStub(channel);
     grpc::ClientContext context;
@@ -79,7 +69,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
   CLI::App* info = app.add_subcommand(
       "info", "Show the server's version, backends, limits and license.");
   info->callback([ctx] {
-    auto channel = Channel(ctx);
+    auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;
@@ -114,7 +104,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
   source->add_option("-o,--output", *out, "file to write")
       ->capture_default_str();
   source->callback([ctx, out] {
-    auto channel = Channel(ctx);
+    auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;

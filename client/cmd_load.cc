@@ -102,13 +102,8 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
     }
     std::vector<std::unique_ptr<v1::Triangulator::Stub>> stubs;
     for (int c = 0; c < f->channels && !f->local; ++c) {
-      ConnectionFlags conn = ctx->connection;
-      auto channel = MakeChannel(conn, &error);
-      if (!channel) {
-        std::cerr << "dotctl: " << error << "\n";
-        ctx->exit_code = kExitUsage;
-        return;
-      }
+      auto channel = ChannelOrReport(ctx);
+      if (!channel) return;
       stubs.push_back(v1::Triangulator::NewStub(channel));
     }
     std::atomic<int> next{0};

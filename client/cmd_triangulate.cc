@@ -52,6 +52,16 @@ std::string OutputPathFor(const std::string& input, const std::string& output,
   return (fs::path(output) / (in.stem().string() + "." + format)).string();
 }
 
+std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx) {
+  std::string error;
+  auto channel = MakeChannel(ctx->connection, &error);
+  if (!channel) {
+    std::cerr << "dotctl: " << error << "\n";
+    ctx->exit_code = kExitUsage;
+  }
+  return channel;
+}
+
 int ExitCodeFor(const grpc::Status& status) {
   switch (status.error_code()) {
     case grpc::StatusCode::OK:
@@ -111,12 +121,8 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
     std::shared_ptr<grpc::Channel> channel;
     std::unique_ptr<v1::Triangulator::Stub> stub;
     if (!flags->local) {
-      channel = MakeChannel(ctx->connection, &error);
-      if (!channel) {
-        std::cerr << "dotctl: " << error << "\n";
-        ctx->exit_code = kExitUsage;
-        return;
-      }
+      channel = ChannelOrReport(ctx);
+      if (!channel) return;
       stub = v1::Triangulator::NewStub(channel);
     }
     v1::Options options = flags->request.ToOptions();

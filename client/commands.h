@@ -37,6 +37,8 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
 std::string OutputPathFor(const std::string& input, const std::string& output,
                           const std::string& format, bool many);
 int ExitCodeFor(const grpc::Status& status);
+// The channel to ctx->connection, or null after reporting a usage error.
+std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx);
 
 }  // namespace dot::client
 

@@ -10,11 +10,6 @@
 namespace dot {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-double MsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now() - t0)
-      .count();
-}
 }  // namespace
 
 Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,

@@ -25,12 +25,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 
-double MsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now() - t0)
-      .count();
-}
-
 // Smallest value of wd * theta + wsq * theta^2 over theta in [0, pi].
 double MinBending(BendingWeights w) {
   double lo = std::min(0.0, w.dihedral * kPi + w.squared_dihedral * kPi * kPi);

@@ -5,6 +5,7 @@
 
 #include "delaunay.h"
 #include "edge_key.h"
+#include "run_control.h"
 
 namespace dot {
 namespace {
@@ -36,6 +37,7 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
                        PolygonLoop* loop, std::vector<Triangle>* faces,
                        Stats* stats) {
   const int32_t input_size = loop->size();
+  RunTicker ticker(control, Stage::kDelaunay);
   Tetrahedralization tets;
   for (;;) {
     const std::vector<Vec3> points = loop->Points();
@@ -54,9 +56,7 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
                         "edge protection would insert more than " +
                             std::to_string(max_inserted) + " vertices");
     }
-    if (control.cancel != nullptr && control.cancel->load()) {
-      return MakeStatus(StatusCode::kCancelled, "cancelled by the caller");
-    }
+    if (!ticker.Poll()) return ticker.status();
     // Split every missing edge at its midpoint, walking the loop once.
     std::vector<int32_t> ids;
     ids.reserve(loop->ids.size() + missing.size());

@@ -11,6 +11,12 @@
 
 namespace dot {
 
+inline double MsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now() - t0)
+      .count();
+}
+
 // Loops call Tick() every iteration; every `kStride` ticks it reads the clock,
 // checks the cancel flag and deadline, and reports progress at most every
 // 50 ms. Cheap enough for inner loops, frequent enough for a ~10 ms response.

@@ -21,9 +21,6 @@ namespace dot {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 struct Candidates {
   std::vector<Triangle> triangles;  // over loop positions

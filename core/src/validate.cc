@@ -127,6 +127,7 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
   });
   std::vector<std::pair<int32_t, int32_t>> boundary;  // directed
   int64_t edge_count = 0;
+  std::vector<int32_t> joins(vertices.size(), 0);  // interior edges at v
   // Triangles joined across manifold edges (union-find), for connectivity
   // and for the fans around each vertex.
   std::vector<int32_t> parent(triangles.size());
@@ -151,6 +152,8 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
                 " is used twice in the same direction");
       }
       parent[find(half[i].triangle)] = find(half[i + 1].triangle);
+      ++joins[lo];
+      ++joins[hi];
     } else {
       ++r.non_manifold_edges;
       problem("edge " + std::to_string(lo) + "-" + std::to_string(hi) +
@@ -190,18 +193,9 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
   // Fans: around a vertex the triangles of an edge-manifold mesh form paths
   // and cycles; it is a single fan when joins (interior edges at v) equal
   // its triangle count minus one (a path) or the count itself (a cycle).
-  std::vector<int32_t> degree(vertices.size(), 0), joins(vertices.size(), 0);
+  std::vector<int32_t> degree(vertices.size(), 0);
   for (const Triangle& t : triangles)
     for (int32_t v : t) ++degree[v];
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
-    while (j < half.size() && half[j].key == half[i].key) ++j;
-    if (j - i == 2) {
-      ++joins[EdgeKeyLo(half[i].key)];
-      ++joins[EdgeKeyHi(half[i].key)];
-    }
-    i = j;
-  }
   bool fans_ok = true;
   for (int32_t v : used) fans_ok &= joins[v] >= degree[v] - 1;
   r.disk = !triangles.empty() && components == 1 && euler == 1 && fans_ok &&
