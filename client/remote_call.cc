@@ -93,7 +93,10 @@ std::string DescribeOutcome(const CallOutcome& o) {
   char cost[64];
   std::snprintf(cost, sizeof cost, "%.6g", m.total_cost());
   s << "ok: " << m.triangle_count() << " triangles, " << m.solver() << " over "
-    << m.search_space_used() << ", cost " << cost;
+    << m.search_space_used();
+  if (!m.delaunay_backend().empty()) s << " (" << m.delaunay_backend() << ")";
+  s << ", cost " << cost;
+  if (m.cache_hit()) s << ", search space from cache";
   if (m.inserted_count() > 0) s << ", " << m.inserted_count() << " inserted";
   if (m.intersecting_pairs() > 0) {
     s << ", " << m.intersecting_pairs() << " SELF-INTERSECTING pairs";

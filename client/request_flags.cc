@@ -32,6 +32,14 @@ void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
       ->check(CLI::IsMember({"auto", "delaunay", "all"}))
       ->capture_default_str()
       ->group("Options");
+  cmd->add_option("--delaunay", f->delaunay,
+                  "3D Delaunay backend: cgal or tetgen (default: the "
+                  "server's, cgal with --local)")
+      ->check(CLI::IsMember({"cgal", "tetgen"}))
+      ->group("Options");
+  cmd->add_flag("--no-cache", f->no_cache,
+                "do not use the server's search-space cache")
+      ->group("Options");
   cmd->add_flag("--protect-edges", f->protect_edges,
                 "split non-Delaunay polygon edges so more polygons succeed")
       ->group("Options");
@@ -48,6 +56,10 @@ v1::Options RequestFlags::ToOptions() const {
   o.set_search_space(space == "delaunay" ? v1::SEARCH_SPACE_DELAUNAY
                      : space == "all"    ? v1::SEARCH_SPACE_ALL
                                          : v1::SEARCH_SPACE_AUTO);
+  o.set_delaunay_backend(delaunay == "cgal"     ? v1::DELAUNAY_BACKEND_CGAL
+                         : delaunay == "tetgen" ? v1::DELAUNAY_BACKEND_TETGEN
+                                                : v1::DELAUNAY_BACKEND_DEFAULT);
+  o.set_no_cache(no_cache);
   o.set_protect_edges(protect_edges);
   o.set_validate_output(validate);
   o.set_time_budget_ms(time_budget_ms);

@@ -22,6 +22,8 @@ namespace dot::client {
 struct RequestFlags {
   MetricWeights weights;
   std::string space = "auto";
+  std::string delaunay;  // "": the server's default
+  bool no_cache = false;
   bool protect_edges = false;
   bool validate = false;
   uint32_t time_budget_ms = 0;

@@ -29,6 +29,14 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   add("--all-space-max-vertices", &c->all_space_max_vertices,
       "DOT_ALL_SPACE_MAX_VERTICES",
       "search space 'auto' falls back to all triangles up to this size");
+  app.add_option("--delaunay-backend", c->delaunay_backend,
+                 "3D Delaunay backend of requests that do not choose one")
+      ->envname("DOT_DELAUNAY_BACKEND")
+      ->check(CLI::IsMember({"cgal", "tetgen"}))
+      ->capture_default_str();
+  add("--cache-mb", &c->cache_mb, "DOT_CACHE_MB",
+      "memory for recently used search spaces, so re-solving a polygon with "
+      "new weights runs only the dynamic program (0: no cache)");
   add("--delaunay-helpers", &c->delaunay_helpers, "DOT_DELAUNAY_HELPERS",
       "TetGen helper processes (-1: one per thread, 0: in-process, "
       "serialized)");

@@ -19,10 +19,12 @@ struct ServerConfig {
   int queue_size = 64;  // requests waiting for a thread
   int max_vertices = 1000000;
   int max_compute_ms = 60000;
-  int64_t memory_budget_mb = 2048;  // per request, DP tables
-  int all_space_max_vertices = 40;  // auto fallback to 'all'
-  int delaunay_helpers = -1;        // -1: one per thread; 0: in-process TetGen
-  std::string helper_path;          // default: next to the server binary
+  int64_t memory_budget_mb = 2048;        // per request, DP tables
+  int all_space_max_vertices = 40;        // auto fallback to 'all'
+  std::string delaunay_backend = "cgal";  // default of requests
+  int64_t cache_mb = 256;                 // search-space cache; 0: off
+  int delaunay_helpers = -1;  // -1: one per thread; 0: in-process TetGen
+  std::string helper_path;    // default: next to the server binary
   int64_t helper_memory_mb = 4096;
   int metrics_port = 9090;  // 0: off
   std::string metrics_bind = "0.0.0.0";

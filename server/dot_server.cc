@@ -69,10 +69,15 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
   limits.max_message_bytes = config.max_message_mb << 20;
   limits.threads = config.threads;
   limits.queue_size = config.queue_size;
+  ParseDelaunayBackend(config.delaunay_backend, &limits.delaunay_backend);
+  if (config.cache_mb > 0) {
+    s->cache_ = std::make_unique<SpaceCache>(config.cache_mb << 20);
+  }
   limits.source_archive = config.source_archive;
   limits.source_url = config.source_url;
   s->service_ = std::make_unique<TriangulatorService>(
-      limits, s->pool_.get(), s->helpers_.get(), s->metrics_.get());
+      limits, s->pool_.get(), s->helpers_.get(), s->cache_.get(),
+      s->metrics_.get());
 
   auto credentials = Credentials(config, error);
   if (!credentials) return nullptr;

@@ -41,6 +41,7 @@ class DotServer {
   std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<DelaunayHelperPool> helpers_;
   std::unique_ptr<ComputePool> pool_;
+  std::unique_ptr<SpaceCache> cache_;
   std::unique_ptr<TriangulatorService> service_;
   std::unique_ptr<grpc::Server> server_;
   int port_ = 0;

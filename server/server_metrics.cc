@@ -30,6 +30,14 @@ ServerMetrics::ServerMetrics(const std::string& bind, int port)
   helper_starts_ = gauge("dot_delaunay_helper_starts",
                          "Delaunay helper processes started (restarts after "
                          "crashes or cancels included)");
+  auto& lookups = prometheus::BuildCounter()
+                      .Name("dot_space_cache_lookups_total")
+                      .Help("Search-space cache lookups by result")
+                      .Register(*registry_);
+  cache_hits_ = &lookups.Add({{"result", "hit"}});
+  cache_misses_ = &lookups.Add({{"result", "miss"}});
+  cache_bytes_ =
+      gauge("dot_space_cache_bytes", "Memory held by the search-space cache");
   if (port > 0) {
     exposer_ = std::make_unique<prometheus::Exposer>(bind + ":" +
                                                      std::to_string(port));
@@ -44,6 +52,11 @@ void ServerMetrics::RequestDone(const std::string& rpc,
       0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
       0.5,   1,      2.5,   5,    10,    30,   60};
   latency_->Add({{"rpc", rpc}}, kBuckets).Observe(seconds);
+}
+
+void ServerMetrics::CacheLookup(bool hit, const SpaceCache::Counters& c) {
+  (hit ? cache_hits_ : cache_misses_)->Increment();
+  cache_bytes_->Set(static_cast<double>(c.bytes));
 }
 
 std::string ServerMetrics::Scrape() const {

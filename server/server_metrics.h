@@ -13,6 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "dot/space_cache.h"
+
 namespace dot::server {
 
 class ServerMetrics {
@@ -26,6 +28,8 @@ class ServerMetrics {
   prometheus::Gauge& inflight() { return *inflight_; }
   prometheus::Gauge& busy_threads() { return *busy_threads_; }
   prometheus::Gauge& helper_starts() { return *helper_starts_; }
+  // One search-space cache lookup, and the cache's size after it.
+  void CacheLookup(bool hit, const SpaceCache::Counters& counters);
   std::string Scrape() const;  // the text format, for tests and logs
 
  private:
@@ -37,6 +41,9 @@ class ServerMetrics {
   prometheus::Gauge* inflight_;
   prometheus::Gauge* busy_threads_;
   prometheus::Gauge* helper_starts_;
+  prometheus::Counter* cache_hits_;
+  prometheus::Counter* cache_misses_;
+  prometheus::Gauge* cache_bytes_;
 };
 
 }  // namespace dot::server

@@ -63,10 +63,12 @@ struct TriangulatorService::Job {
 TriangulatorService::TriangulatorService(ServiceLimits limits,
                                          ComputePool* pool,
                                          DelaunayHelperPool* helpers,
+                                         SpaceCache* cache,
                                          ServerMetrics* metrics)
     : limits_(std::move(limits)),
       pool_(pool),
       helpers_(helpers),
+      cache_(cache),
       metrics_(metrics) {}
 
 std::shared_ptr<TriangulatorService::Job> TriangulatorService::Prepare(
@@ -82,6 +84,7 @@ std::shared_ptr<TriangulatorService::Job> TriangulatorService::Prepare(
                           "server is shutting down; retry on another replica");
     return nullptr;
   }
+  job->options.delaunay = limits_.delaunay_backend;
   const Status shape =
       wire::ProblemFromRequest(request, &job->problem, &job->options);
   if (!shape.ok()) {
@@ -173,8 +176,15 @@ void TriangulatorService::Run(Job& job) {
         return s;
       };
     }
+    if (!job.wire.no_cache()) control.space_cache = cache_;
     try {
       result = dot::Triangulate(job.problem, job.options, control);
+      // Counted when the request got as far as a search space.
+      if (control.space_cache != nullptr &&
+          result.space_used != SpaceUsed::kNone) {
+        metrics_->CacheLookup(result.stats.cache_hit,
+                              control.space_cache->counters());
+      }
     } catch (const std::exception& e) {  // bad_alloc above all
       result = {};
       result.status =
@@ -459,8 +469,15 @@ grpc::Status TriangulatorService::GetServerInfo(grpc::ServerContext*,
                                                 v1::ServerInfo* info) {
   info->set_version(DOT_VERSION);
   info->set_build(DOT_BUILD_INFO);
-  info->add_backends(helpers_ ? "tetgen-1.5 (helper processes)"
-                              : "tetgen-1.5 (in-process, serialized)");
+  info->add_backends(
+      std::string("cgal-5.5 Delaunay 3D") +
+      (limits_.delaunay_backend == DelaunayBackend::kCgal ? " (default)" : ""));
+  info->add_backends(std::string(helpers_ ? "tetgen-1.5 (helper processes)"
+                                          : "tetgen-1.5 (in-process, "
+                                            "serialized)") +
+                     (limits_.delaunay_backend == DelaunayBackend::kTetgen
+                          ? " (default)"
+                          : ""));
   info->add_backends("cgal-5.5 constrained Delaunay 2D (planar polygons)");
   info->add_backends("all-triangles GK1/GK2");
   v1::Limits* l = info->mutable_limits();
@@ -468,6 +485,7 @@ grpc::Status TriangulatorService::GetServerInfo(grpc::ServerContext*,
   l->set_max_compute_ms(limits_.max_compute_ms);
   l->set_memory_budget_bytes(limits_.memory_budget_bytes);
   l->set_compute_threads(limits_.threads);
+  l->set_cache_bytes(cache_ ? static_cast<uint64_t>(cache_->max_bytes()) : 0);
   l->set_queue_size(limits_.queue_size);
   l->set_all_space_max_vertices(limits_.all_space_max_vertices);
   l->set_max_message_bytes(limits_.max_message_bytes);

@@ -15,6 +15,8 @@
 
 #include "compute_pool.h"
 #include "delaunay_helpers.h"
+#include "dot/space_cache.h"
+#include "dot/triangulate.h"
 #include "dot/v1/triangulation.grpc.pb.h"
 #include "server_metrics.h"
 
@@ -29,6 +31,7 @@ struct ServiceLimits {
   int max_message_bytes = 16 << 20;
   int threads = 1;
   int queue_size = 64;
+  DelaunayBackend delaunay_backend = DelaunayBackend::kCgal;
   std::string source_archive;
   std::string source_url;
 };
@@ -36,8 +39,10 @@ struct ServiceLimits {
 class TriangulatorService final : public v1::Triangulator::Service {
  public:
   // `helpers` may be null: TetGen then runs in-process, serialized.
+  // `cache` may be null: no search-space cache.
   TriangulatorService(ServiceLimits limits, ComputePool* pool,
-                      DelaunayHelperPool* helpers, ServerMetrics* metrics);
+                      DelaunayHelperPool* helpers, SpaceCache* cache,
+                      ServerMetrics* metrics);
 
   grpc::Status Triangulate(
       grpc::ServerContext* context, const v1::TriangulateRequest* request,
@@ -75,6 +80,7 @@ class TriangulatorService final : public v1::Triangulator::Service {
   const ServiceLimits limits_;
   ComputePool* pool_;
   DelaunayHelperPool* helpers_;
+  SpaceCache* cache_;
   ServerMetrics* metrics_;
   std::atomic<bool> draining_{false};
   std::atomic<int> inflight_{0};

@@ -60,8 +60,10 @@ double CancelLatencyMs(Stage stage, StatusCode* code) {
   Clock::time_point cancelled_at;
   Control control;
   control.cancel = &cancel;
-  control.progress = [&](Stage s, double) {
-    if (s == stage && !cancel) {
+  control.progress = [&](Stage s, double fraction) {
+    // In the Delaunay step, cancel once CGAL is well into its insertions.
+    const bool midway = stage != Stage::kDelaunay || fraction > 0.2;
+    if (s == stage && midway && !cancel) {
       cancelled_at = Clock::now();
       cancel = true;
     }
@@ -73,7 +75,8 @@ double CancelLatencyMs(Stage stage, StatusCode* code) {
 }
 
 TEST(CancelTest, CancelStopsLongDot2RunWithin100Ms) {
-  for (Stage stage : {Stage::kAdjacency, Stage::kDynamicProgram}) {
+  for (Stage stage :
+       {Stage::kDelaunay, Stage::kAdjacency, Stage::kDynamicProgram}) {
     StatusCode code;
     const double ms = CancelLatencyMs(stage, &code);
     EXPECT_EQ(code, StatusCode::kCancelled);
@@ -108,7 +111,7 @@ TEST(ProgressTest, ReportsStagesInOrder) {
   EXPECT_EQ(stages, expected);
 }
 
-TEST(BackendTest, InjectedTetrahedralizationIsUsedAndItsErrorsReported) {
+TEST(BackendTest, InjectedTetrahedralizationServesTheTetgenBackend) {
   Problem p{MakeCurve(Curve::kSpiral, 200), {}, {}};
   int calls = 0;
   Control control;
@@ -116,7 +119,9 @@ TEST(BackendTest, InjectedTetrahedralizationIsUsedAndItsErrorsReported) {
     ++calls;
     return MakeStatus(StatusCode::kInternal, "helper process died");
   };
-  const Result r = Triangulate(p, {}, control);
+  Options tetgen;
+  tetgen.delaunay = DelaunayBackend::kTetgen;
+  const Result r = Triangulate(p, tetgen, control);
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(r.status.code, StatusCode::kInternal);
   EXPECT_EQ(r.status.message, "helper process died");

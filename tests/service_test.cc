@@ -89,6 +89,38 @@ TEST(ServiceTest, TriangulateWithEveryMetricMix) {
   EXPECT_GT(out.summary.metric_costs().normal_deviation(), 0);
 }
 
+TEST(ServiceTest, ResolvesComeFromTheCacheAndSaySo) {
+  auto s = StartServer(testing::LoopbackConfig());
+  auto request = CurveRequest(Curve::kTwist, 400, Weights(Metric::kArea));
+  const std::vector<Vec3> input = Input(request);
+  auto call = [&] { return TriangulateRemote(*s.stub, request, input, 30); };
+  const CallOutcome first = call();
+  ExpectSameAsLocal(request, first);
+  EXPECT_FALSE(first.summary.cache_hit());
+  EXPECT_EQ(first.summary.delaunay_backend(), "cgal");
+  *request.mutable_weights() = wire::ToWire(Weights(Metric::kSquaredDihedral));
+  const CallOutcome second = call();
+  ExpectSameAsLocal(request, second);
+  EXPECT_TRUE(second.summary.cache_hit());
+  EXPECT_EQ(second.summary.stats().delaunay_ms(), 0);
+
+  request.mutable_options()->set_no_cache(true);
+  EXPECT_FALSE(call().summary.cache_hit());
+  request.mutable_options()->set_no_cache(false);
+  request.mutable_options()->set_delaunay_backend(v1::DELAUNAY_BACKEND_TETGEN);
+  const CallOutcome tetgen = call();
+  ExpectSameAsLocal(request, tetgen);
+  EXPECT_FALSE(tetgen.summary.cache_hit());  // a different space
+  EXPECT_EQ(tetgen.summary.delaunay_backend(), "tetgen");
+
+  request.mutable_options()->set_delaunay_backend(
+      static_cast<v1::DelaunayBackend>(7));
+  const grpc::Status bad = call().status;
+  EXPECT_EQ(bad.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(bad.error_message().find("delaunay_backend 7"), std::string::npos)
+      << bad.error_message();
+}
+
 TEST(ServiceTest, LargeResultArrivesWholeInSmallChunks) {
   auto config = testing::LoopbackConfig();
   config.chunk_kb = 64;  // forces dozens of chunks
@@ -230,10 +262,8 @@ TEST(ServiceTest, ErrorsAreStatusCodesNamingTheProblem) {
   EXPECT_EQ(timed_out.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
 }
 
-TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
-  auto config = testing::LoopbackConfig();
-  config.threads = 1;
-  config.delaunay_helpers = 1;
+// A long run cancelled by its client frees the only compute thread at once.
+void ExpectCancelFreesTheWorker(const server::ServerConfig& config) {
   auto s = StartServer(config);
   grpc::ClientContext context;
   auto long_request =
@@ -255,6 +285,17 @@ TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
           .count();
   EXPECT_LT(freed_ms, 500);
   EXPECT_LT(out.summary.queue_ms(), 200);
+}
+
+TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
+  for (const char* backend : {"cgal", "tetgen"}) {
+    SCOPED_TRACE(backend);
+    auto config = testing::LoopbackConfig();
+    config.threads = 1;
+    config.delaunay_helpers = 1;
+    config.delaunay_backend = backend;
+    ExpectCancelFreesTheWorker(config);
+  }
 }
 
 TEST(ServiceTest, OverloadIsRefusedAtOnce) {
@@ -332,6 +373,7 @@ TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
   auto config = testing::LoopbackConfig();
   config.threads = 1;
   config.delaunay_helpers = 1;
+  config.delaunay_backend = "tetgen";
   auto s = StartServer(config);
   const auto warm = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
   ASSERT_TRUE(TriangulateRemote(*s.stub, warm, Input(warm), 30).status.ok());
@@ -360,6 +402,7 @@ TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
   auto config = testing::LoopbackConfig();
   config.threads = 1;
   config.delaunay_helpers = 1;
+  config.delaunay_backend = "tetgen";
   config.helper_memory_mb = 100;
   auto s = StartServer(config);
   // About 2 million tetrahedra: far more than 100 MiB inside TetGen.
@@ -413,6 +456,8 @@ TEST(ServiceTest, ServerInfoAndSource) {
   EXPECT_EQ(info.license(), "AGPL-3.0-or-later");
   EXPECT_EQ(info.source_url(), "https://example.org/dot");
   EXPECT_EQ(info.limits().compute_threads(), 2u);
+  EXPECT_EQ(info.limits().cache_bytes(), uint64_t{256} << 20);
+  EXPECT_NE(info.backends(0).find("cgal"), std::string::npos);
   EXPECT_FALSE(info.version().empty());
   grpc::ClientContext c2;
   auto reader = s.stub->GetSource(&c2, {});

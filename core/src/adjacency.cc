@@ -22,6 +22,34 @@ uint64_t IncidenceKey(int32_t lo, int32_t hi, int slot) {
          (uint64_t(lo) << kSlotBits) | uint64_t(slot);
 }
 
+// Insertion sort of a short list (a few entries per edge on average).
+template <typename Key>
+void SortShort(int32_t* begin, int32_t* end, Key key) {
+  for (int32_t* i = begin + 1; i < end; ++i) {
+    const int32_t v = *i;
+    const int32_t k = key(v);
+    int32_t* j = i;
+    for (; j > begin && key(j[-1]) > k; --j) *j = j[-1];
+    *j = v;
+  }
+}
+
+// Orders every edge's lists by the triangles' third vertex, so the dynamic
+// programs (and their tie-breaking) depend only on the candidate set, not on
+// the order a Delaunay backend happened to list it in.
+void CanonicalOrder(const std::vector<Triangle>& triangles, Adjacency* adj) {
+  for (int32_t e = 0; e < adj->edge_count(); ++e) {
+    SortShort(adj->inner.data() + adj->inner_begin[e],
+              adj->inner.data() + adj->inner_begin[e + 1],
+              [&](int32_t t) { return triangles[t][1]; });
+    SortShort(adj->outer.data() + adj->outer_begin[e],
+              adj->outer.data() + adj->outer_begin[e + 1], [&](int32_t slot) {
+                const Triangle& t = triangles[slot >> 1];
+                return (slot & 1) == 0 ? t[2] : t[0];
+              });
+  }
+}
+
 }  // namespace
 
 int64_t Adjacency::Bytes() const {
@@ -117,6 +145,7 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   }
   adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));
   adj.outer_begin.push_back(static_cast<int32_t>(adj.outer.size()));
+  CanonicalOrder(triangles, &adj);
   for (int32_t i = 0; i < n; ++i) {
     if (!has_polygon_edge[i]) adj.missing_polygon_edges.push_back(i);
   }

@@ -17,6 +17,13 @@ namespace dot {
 // TetgenTetrahedralize is declared in dot/triangulate.h (public: the
 // server's helper processes call it).
 
+// Distinct faces (sorted ascending) of the 3D Delaunay tetrahedralization of
+// `points` (no duplicates, not all coplanar) by CGAL, and its number of
+// finite tetrahedra. Polls `control` while inserting.
+Status CgalDelaunayFaces(const std::vector<Vec3>& points,
+                         const Control& control, std::vector<Triangle>* faces,
+                         int64_t* tetrahedra);
+
 // Distinct faces of a tetrahedralization, each sorted ascending, found
 // through the neighbour lists in one linear pass. kInternal when the
 // neighbour lists are inconsistent.

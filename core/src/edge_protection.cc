@@ -31,22 +31,33 @@ std::vector<int32_t> MissingPolygonEdges(int32_t n,
   return missing;
 }
 
+Status Faces(DelaunayBackend backend, const Control& control,
+             const std::vector<Vec3>& points, std::vector<Triangle>* faces,
+             int64_t* tetrahedra) {
+  if (backend == DelaunayBackend::kCgal) {
+    return CgalDelaunayFaces(points, control, faces, tetrahedra);
+  }
+  Tetrahedralization tets;
+  Status s = control.tetrahedralize ? control.tetrahedralize(points, &tets)
+                                    : TetgenTetrahedralize(points, &tets);
+  if (!s.ok()) return s;
+  *tetrahedra = static_cast<int64_t>(tets.tets.size());
+  return FacesOfTetrahedra(tets, faces);
+}
+
 }  // namespace
 
-Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
+Status Delaunay3dFaces(const Options& options, const Control& control,
                        PolygonLoop* loop, std::vector<Triangle>* faces,
                        Stats* stats) {
   const int32_t input_size = loop->size();
+  const int max_inserted = options.max_inserted_vertices;
   RunTicker ticker(control, Stage::kDelaunay);
-  Tetrahedralization tets;
   for (;;) {
-    const std::vector<Vec3> points = loop->Points();
-    Status s = control.tetrahedralize ? control.tetrahedralize(points, &tets)
-                                      : TetgenTetrahedralize(points, &tets);
+    Status s = Faces(options.delaunay, control, loop->Points(), faces,
+                     &stats->tetrahedra);
     if (!s.ok()) return s;
-    s = FacesOfTetrahedra(tets, faces);
-    if (!s.ok()) return s;
-    if (!protect) break;
+    if (!options.protect_edges) break;
     const std::vector<int32_t> missing =
         MissingPolygonEdges(loop->size(), *faces);
     if (missing.empty()) break;
@@ -85,7 +96,6 @@ Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
     }
     loop->ids = std::move(ids);
   }
-  stats->tetrahedra = static_cast<int64_t>(tets.tets.size());
   stats->delaunay_triangles = static_cast<int64_t>(faces->size());
   return OkStatus();
 }

@@ -15,8 +15,9 @@
 namespace dot {
 
 // Fills `faces` (over loop positions) and the tetrahedra/face counts of
-// `stats`; with `protect`, may grow `loop`.
-Status Delaunay3dFaces(bool protect, int max_inserted, const Control& control,
+// `stats` with options.delaunay's backend; with options.protect_edges, may
+// grow `loop` by at most options.max_inserted_vertices.
+Status Delaunay3dFaces(const Options& options, const Control& control,
                        PolygonLoop* loop, std::vector<Triangle>* faces,
                        Stats* stats);
 

@@ -57,6 +57,20 @@ std::string_view SearchSpaceName(SearchSpace s) {
   return "?";
 }
 
+std::string_view DelaunayBackendName(DelaunayBackend b) {
+  return b == DelaunayBackend::kTetgen ? "tetgen" : "cgal";
+}
+
+bool ParseDelaunayBackend(std::string_view name, DelaunayBackend* backend) {
+  for (DelaunayBackend b : {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
+    if (name == DelaunayBackendName(b)) {
+      *backend = b;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string_view SpaceUsedName(SpaceUsed s) {
   switch (s) {
     case SpaceUsed::kNone:

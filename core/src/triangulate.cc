@@ -4,16 +4,19 @@
 #include "dot/triangulate.h"
 
 #include <chrono>
+#include <memory>
 #include <numeric>
 #include <sstream>
 
 #include "adjacency.h"
 #include "delaunay.h"
+#include "dot/space_cache.h"
 #include "dot/validate.h"
 #include "edge_protection.h"
 #include "input_check.h"
 #include "plane_fit.h"
 #include "polygon_loop.h"
+#include "prepared_space.h"
 #include "run_control.h"
 #include "solvers.h"
 
@@ -21,11 +24,6 @@ namespace dot {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct Candidates {
-  std::vector<Triangle> triangles;  // over loop positions
-  SpaceUsed space = SpaceUsed::kNone;
-};
 
 Status CheckBudget(int64_t triangles, bool bi, const Options& options,
                    Stats* stats) {
@@ -44,51 +42,66 @@ void Report(const Control& control, Stage stage, double fraction) {
   if (control.progress) control.progress(stage, fraction);
 }
 
-// Runs adjacency, the DP and tiling over a candidate set; on success fills
-// the result's triangles (as vertex ids) and solver.
-Status Solve(const PolygonLoop& loop, const Candidates& cand,
-             const MetricWeights& weights, const Options& options,
-             const Control& control, Result* r) {
+// The weight-independent half of a solve: adjacency, and the candidates'
+// unit normals when `unit_normals` (DOT2, or a space kept for re-solves).
+Status BuildSpaceTables(bool unit_normals, const Options& options,
+                        const Control& control, bool bi, PreparedSpace* sp,
+                        Stats* st) {
+  Status s =
+      CheckBudget(static_cast<int64_t>(sp->triangles.size()), bi, options, st);
+  if (!s.ok()) return s;
+  Report(control, Stage::kAdjacency, 0);
+  if (unit_normals) {
+    const std::vector<Vec3> points = sp->loop.Points();
+    sp->unit_normals.reserve(sp->triangles.size());
+    RunTicker ticker(control, Stage::kAdjacency);
+    for (const Triangle& t : sp->triangles) {
+      if (!ticker.Tick()) return ticker.status();
+      sp->unit_normals.push_back(UnitNormal(points, t));
+    }
+  }
+  return BuildAdjacency(sp->loop.size(), sp->triangles, control,
+                        &sp->adjacency);
+}
+
+// The weight-dependent half: per-triangle weights, the DP and tiling; on
+// success fills the result's triangles (as vertex ids) and solver.
+Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
+             const Options& options, const Control& control, Result* r) {
   const bool bi = HasBiTriangleWeight(weights);
   Stats& st = r->stats;
-  Status s = CheckBudget(static_cast<int64_t>(cand.triangles.size()), bi,
-                         options, &st);
+  Status s =
+      CheckBudget(static_cast<int64_t>(sp.triangles.size()), bi, options, &st);
   if (!s.ok()) return s;
-
-  Report(control, Stage::kAdjacency, 0);
+  const PolygonLoop& loop = sp.loop;
+  const Adjacency& adj = sp.adjacency;
   auto t0 = Clock::now();
   const std::vector<Vec3> points = loop.Points();
   std::vector<Vec3> normals;  // in loop order, only when weighted
   if (weights[Metric::kNormalDeviation] != 0) {
     for (int32_t id : loop.ids) normals.push_back(loop.normals[id]);
   }
-  const size_t count = cand.triangles.size();
+  const size_t count = sp.triangles.size();
   // Grown inside the ticked loop, so a cancel never waits for a bulk fill.
   std::vector<double> w;
-  std::vector<Vec3> unit;
   w.reserve(count);
-  if (bi) unit.reserve(count);
   RunTicker ticker(control, Stage::kAdjacency);
   for (size_t t = 0; t < count; ++t) {
     if (!ticker.Tick()) return ticker.status();
     w.push_back(WeightedTotal(
-        weights, PerTriangleMetrics(points, normals, cand.triangles[t])));
-    if (bi) unit.push_back(UnitNormal(points, cand.triangles[t]));
+        weights, PerTriangleMetrics(points, normals, sp.triangles[t])));
   }
-  Adjacency adj;
-  s = BuildAdjacency(loop.size(), cand.triangles, control, &adj);
-  if (!s.ok()) return s;
   st.search_triangles = static_cast<int64_t>(count);
   st.edges = adj.edge_count();
   st.adjacency_entries =
       static_cast<int64_t>(adj.inner.size() + adj.outer.size());
-  st.adjacency_ms = MsSince(t0);
+  st.adjacency_ms += MsSince(t0);
 
   Report(control, Stage::kDynamicProgram, 0);
   DpSolution sol;
   if (bi) {
     s = SolveDot2(
-        adj, w, unit,
+        adj, w, sp.unit_normals,
         {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
         control, &sol);
   } else {
@@ -98,13 +111,14 @@ Status Solve(const PolygonLoop& loop, const Candidates& cand,
   st.table_bytes =
       adj.Bytes() +
       static_cast<int64_t>(count * (sizeof(Triangle) + sizeof(double))) +
-      static_cast<int64_t>(unit.size() * sizeof(Vec3)) + sol.table_bytes;
+      static_cast<int64_t>(sp.unit_normals.size() * sizeof(Vec3)) +
+      sol.table_bytes;
   st.dp_ms = sol.dp_ms;
   st.tiling_ms = sol.tiling_ms;
-  const bool all = cand.space == SpaceUsed::kAll;
+  const bool all = sp.space == SpaceUsed::kAll;
   r->solver = bi ? (all ? Solver::kGk2 : Solver::kDot2)
                  : (all ? Solver::kGk1 : Solver::kDot1);
-  r->space_used = cand.space;
+  r->space_used = sp.space;
   if (s.code == StatusCode::kNoTriangulation) {
     r->non_delaunay_edges.clear();
     for (int32_t i : adj.missing_polygon_edges) {
@@ -132,43 +146,60 @@ Status Solve(const PolygonLoop& loop, const Candidates& cand,
   r->triangles.clear();
   r->triangles.reserve(sol.triangles.size());
   for (int32_t t : sol.triangles) {
-    const Triangle& p = cand.triangles[t];
+    const Triangle& p = sp.triangles[t];
     r->triangles.push_back({loop.ids[p[0]], loop.ids[p[1]], loop.ids[p[2]]});
   }
   return OkStatus();
 }
 
-Status DelaunayCandidates(const PlaneFit& fit, bool planar,
-                          const Options& options, const Control& control,
-                          PolygonLoop* loop, Candidates* cand, Stats* stats) {
+// The Delaunay search space of the loop, prepared for solving.
+Status PrepareDelaunay(const PlaneFit& fit, bool planar, bool unit_normals,
+                       bool bi, const Options& options, const Control& control,
+                       PreparedSpace* sp, Stats* stats) {
   Report(control, Stage::kDelaunay, 0);
+  auto t0 = Clock::now();
+  Status s;
   if (planar) {
-    cand->space = SpaceUsed::kPlanarDelaunay2d;
-    Status s =
-        PlanarCdtTriangles(loop->Points(), fit.dominant_axis, &cand->triangles);
-    stats->delaunay_triangles = static_cast<int64_t>(cand->triangles.size());
-    return s;
+    sp->space = SpaceUsed::kPlanarDelaunay2d;
+    s = PlanarCdtTriangles(sp->loop.Points(), fit.dominant_axis,
+                           &sp->triangles);
+    stats->delaunay_triangles = static_cast<int64_t>(sp->triangles.size());
+  } else {
+    sp->space = SpaceUsed::kDelaunay3d;
+    s = Delaunay3dFaces(options, control, &sp->loop, &sp->triangles, stats);
   }
-  cand->space = SpaceUsed::kDelaunay3d;
-  return Delaunay3dFaces(options.protect_edges, options.max_inserted_vertices,
-                         control, loop, &cand->triangles, stats);
+  sp->tetrahedra = stats->tetrahedra;
+  sp->delaunay_triangles = stats->delaunay_triangles;
+  stats->delaunay_ms = MsSince(t0);
+  if (!s.ok()) return s;
+  t0 = Clock::now();
+  s = BuildSpaceTables(unit_normals, options, control, bi, sp, stats);
+  stats->adjacency_ms = MsSince(t0);
+  return s;
 }
 
-Status AllCandidates(const PolygonLoop& loop, const MetricWeights& weights,
-                     const Options& options, const Control& control,
-                     Candidates* cand, Stats* stats) {
-  const int64_t n = loop.size();
+// All triangles of the loop (GK1/GK2), prepared for solving.
+Status PrepareAll(const MetricWeights& weights, const Options& options,
+                  const Control& control, PreparedSpace* sp, Stats* stats) {
+  const int64_t n = sp->loop.size();
   if (n > options.all_space_hard_limit) {
     return MakeStatus(StatusCode::kResourceExhausted,
                       "search space 'all' is limited to " +
                           std::to_string(options.all_space_hard_limit) +
                           " vertices; the polygon has " + std::to_string(n));
   }
-  Status s = CheckBudget(n * (n - 1) * (n - 2) / 6,
-                         HasBiTriangleWeight(weights), options, stats);
+  const bool bi = HasBiTriangleWeight(weights);
+  Status s = CheckBudget(n * (n - 1) * (n - 2) / 6, bi, options, stats);
   if (!s.ok()) return s;
-  cand->space = SpaceUsed::kAll;
-  return AllTriangles(loop.Points(), control, &cand->triangles);
+  sp->space = SpaceUsed::kAll;
+  auto t0 = Clock::now();
+  s = AllTriangles(sp->loop.Points(), control, &sp->triangles);
+  stats->delaunay_ms += MsSince(t0);
+  if (!s.ok()) return s;
+  t0 = Clock::now();
+  s = BuildSpaceTables(bi, options, control, bi, sp, stats);
+  stats->adjacency_ms += MsSince(t0);
+  return s;
 }
 
 }  // namespace
@@ -193,6 +224,7 @@ Result Triangulate(const Problem& problem, const Options& options,
   r.status = CheckNotCollinear(fit, static_cast<int>(problem.vertices.size()),
                                options);
   if (!r.status.ok()) return r;
+  r.delaunay = options.delaunay;
   r.planar = fit.max_plane_distance <= options.planar_tolerance * fit.diagonal;
   MetricWeights weights = problem.weights;
   if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
@@ -202,25 +234,39 @@ Result Triangulate(const Problem& problem, const Options& options,
   std::iota(loop.ids.begin(), loop.ids.end(), 0);
   r.stats.validate_ms = MsSince(t_start);
 
-  Candidates cand;
+  const bool bi = HasBiTriangleWeight(weights);
+  SpaceCache* cache = control.space_cache;
+  std::shared_ptr<const PreparedSpace> space;
   Status s;
   if (options.space != SearchSpace::kAll) {
-    const auto t0 = Clock::now();
-    s = DelaunayCandidates(fit, r.planar, options, control, &loop, &cand,
-                           &r.stats);
-    r.stats.delaunay_ms = MsSince(t0);
-    if (s.ok()) s = Solve(loop, cand, weights, options, control, &r);
+    const std::string key = cache ? SpaceCacheKey(problem, options) : "";
+    if (cache) space = cache->Find(key);
+    r.stats.cache_hit = space != nullptr;
+    if (space != nullptr) {
+      r.stats.tetrahedra = space->tetrahedra;
+      r.stats.delaunay_triangles = space->delaunay_triangles;
+    } else {
+      auto fresh = std::make_shared<PreparedSpace>();
+      fresh->loop = loop;
+      s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi, options,
+                          control, fresh.get(), &r.stats);
+      if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());
+      space = std::move(fresh);
+    }
+    if (s.ok()) s = Solve(*space, weights, options, control, &r);
   }
   const bool fallback = options.space == SearchSpace::kAuto &&
                         s.code == StatusCode::kNoTriangulation &&
                         loop.size() <= options.all_space_max_vertices;
   if (options.space == SearchSpace::kAll || fallback) {
-    const auto t0 = Clock::now();
-    s = AllCandidates(loop, weights, options, control, &cand, &r.stats);
-    r.stats.delaunay_ms += MsSince(t0);
-    if (s.ok()) s = Solve(loop, cand, weights, options, control, &r);
+    auto fresh = std::make_shared<PreparedSpace>();
+    fresh->loop = loop;
+    s = PrepareAll(weights, options, control, fresh.get(), &r.stats);
+    if (s.ok()) s = Solve(*fresh, weights, options, control, &r);
+    space = std::move(fresh);
   }
   r.status = s;
+  if (space != nullptr) loop = space->loop;  // with any inserted vertices
   r.stats.n = loop.size();
   r.vertices = std::move(loop.vertices);
   r.polygon = std::move(loop.ids);

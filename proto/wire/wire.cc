@@ -79,6 +79,11 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
                    std::to_string(request.options().search_space()) +
                    " is not a known search space");
   }
+  const v1::DelaunayBackend backend = request.options().delaunay_backend();
+  if (!v1::DelaunayBackend_IsValid(backend)) {
+    return Invalid("options.delaunay_backend " + std::to_string(backend) +
+                   " is not a known backend");
+  }
   problem->vertices.clear();
   problem->normals.clear();
   problem->vertices.reserve(c.size() / 3);
@@ -91,6 +96,11 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
   problem->weights = FromWire(request.weights());
   options->space = FromWire(request.options().search_space());
   options->protect_edges = request.options().protect_edges();
+  if (backend != v1::DELAUNAY_BACKEND_DEFAULT) {
+    options->delaunay = backend == v1::DELAUNAY_BACKEND_TETGEN
+                            ? DelaunayBackend::kTetgen
+                            : DelaunayBackend::kCgal;
+  }
   options->validate_output = request.options().validate_output();
   return OkStatus();
 }
@@ -139,6 +149,10 @@ void FillSummary(const Result& r, v1::Summary* s) {
   s->set_solver(std::string(SolverName(r.solver)));
   s->set_planar(r.planar);
   s->set_intersecting_pairs(r.intersecting_pairs);
+  s->set_delaunay_backend(r.space_used == SpaceUsed::kDelaunay3d
+                              ? std::string(DelaunayBackendName(r.delaunay))
+                              : "");
+  s->set_cache_hit(r.stats.cache_hit);
   v1::Stats* st = s->mutable_stats();
   st->set_n(r.stats.n);
   st->set_tetrahedra(r.stats.tetrahedra);

@@ -9,6 +9,7 @@
 #include "dot/holes.h"        // IWYU pragma: export
 #include "dot/io.h"           // IWYU pragma: export
 #include "dot/metrics.h"      // IWYU pragma: export
+#include "dot/space_cache.h"  // IWYU pragma: export
 #include "dot/status.h"       // IWYU pragma: export
 #include "dot/triangulate.h"  // IWYU pragma: export
 #include "dot/validate.h"     // IWYU pragma: export

@@ -5,7 +5,8 @@
 // Search spaces (paper: Zou, Ju, Carr, "Delaunay-restricted optimal
 // triangulation of 3D polygons"):
 //  - kDelaunay: triangles of the 3D Delaunay tetrahedralization of the
-//    vertices (TetGen, exact input coordinates), solved by DOT1 / DOT2. Output
+//    vertices (CGAL or TetGen, exact predicates on the input coordinates),
+//    solved by DOT1 / DOT2. Output
 //    is free of self-intersections by construction. Planar and nearly planar
 //    polygons are triangulated instead over the 2D constrained Delaunay
 //    triangulation in their dominant coordinate plane (CGAL), so the output is
@@ -20,9 +21,9 @@
 // deterministically.
 //
 // Thread safety: TetGen keeps file-scope state, so concurrent calls that reach
-// the TetGen backend must be serialized (the default backend holds a mutex) or
-// run in separate processes (Control::tetrahedralize lets a caller plug one
-// in). Everything else is re-entrant.
+// the TetGen backend are serialized (it holds a mutex) unless a caller runs it
+// in separate processes (Control::tetrahedralize). The CGAL backend and
+// everything else is re-entrant.
 #ifndef DOT_TRIANGULATE_H_
 #define DOT_TRIANGULATE_H_
 
@@ -45,12 +46,22 @@ enum class SearchSpace { kAuto, kDelaunay, kAll };
 // What actually produced a result.
 enum class SpaceUsed { kNone, kDelaunay3d, kPlanarDelaunay2d, kAll };
 enum class Solver { kNone, kDot1, kDot2, kGk1, kGk2 };
+// Who computes the 3D Delaunay tetrahedralization. Both use exact
+// predicates; they can differ only in how they break cospherical ties.
+enum class DelaunayBackend { kCgal, kTetgen };
 enum class Stage { kValidate, kDelaunay, kAdjacency, kDynamicProgram, kTiling };
 
 std::string_view SearchSpaceName(SearchSpace s);
 std::string_view SpaceUsedName(SpaceUsed s);
 std::string_view SolverName(Solver s);
-std::string_view StageName(Stage s);  // "the Delaunay step", ...
+std::string_view StageName(Stage s);
+std::string_view DelaunayBackendName(DelaunayBackend b);  // "cgal", "tetgen"
+// Parses a DelaunayBackendName; false when `name` is not one.
+bool ParseDelaunayBackend(
+    std::string_view name,
+    DelaunayBackend* backend);  // "the Delaunay step", ...
+
+class SpaceCache;
 
 struct Problem {
   std::vector<Vec3> vertices;  // polygon, closed from last to first
@@ -60,6 +71,8 @@ struct Problem {
 
 struct Options {
   SearchSpace space = SearchSpace::kAuto;
+  // CGAL is the default: faster, re-entrant, and cancellable mid-way.
+  DelaunayBackend delaunay = DelaunayBackend::kCgal;
   // Split non-Delaunay polygon edges at their midpoints until every polygon
   // edge is on a Delaunay triangle (paper, Lemma 4.3).
   bool protect_edges = false;
@@ -103,7 +116,12 @@ struct Control {
       std::chrono::steady_clock::time_point::max();
   // Called from the computing thread, at most every few milliseconds.
   std::function<void(Stage, double fraction)> progress;
-  TetrahedralizeFn tetrahedralize;  // empty: TetGen in-process
+  // Replaces in-process TetGen for DelaunayBackend::kTetgen (the server runs
+  // it in helper processes). Empty: TetGen in-process.
+  TetrahedralizeFn tetrahedralize;
+  // Keeps and reuses weight-independent search spaces across calls; null:
+  // no caching. See dot/space_cache.h.
+  SpaceCache* space_cache = nullptr;
 };
 
 struct Stats {
@@ -116,6 +134,7 @@ struct Stats {
   int64_t dp_states = 0;           // DOT1: edges; DOT2: edge-triangle pairs
   int64_t table_bytes = 0;         // adjacency + DP tables
   int64_t estimated_bytes = 0;     // the estimate checked against the budget
+  bool cache_hit = false;          // the search space came from the cache
   double validate_ms = 0, delaunay_ms = 0, adjacency_ms = 0, dp_ms = 0,
          tiling_ms = 0, total_ms = 0;
 };
@@ -130,6 +149,7 @@ struct Result {
   double total_cost = 0;
   MetricValues metric_costs;  // unweighted sum of each metric
   SpaceUsed space_used = SpaceUsed::kNone;
+  DelaunayBackend delaunay = DelaunayBackend::kCgal;  // for kDelaunay3d
   Solver solver = Solver::kNone;
   bool planar = false;
   int64_t intersecting_pairs = -1;  // -1: not checked
