@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "adjacency.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "run_control.h"
@@ -8,23 +9,34 @@
 namespace dot {
 namespace {
 
-// Sort key of an edge incidence: span, then low end, then slot. Fits 64 bits
-// for n < 2^24.
-constexpr int kSlotBits = 2, kLoBits = 24;
+constexpr int kLoBits = 24;  // n < 2^24
 
-struct Incidence {
-  uint64_t key;
-  int32_t triangle;
+// An edge incidence is a 4-byte record 4 * triangle + slot; its edge is
+// looked up in the triangle: slot 0 is [a, b], 1 is [b, c], 2 is [a, c].
+struct EdgeOf {
+  const std::vector<Triangle>& triangles;
+  std::pair<int32_t, int32_t> operator()(uint32_t record) const {
+    const Triangle& t = triangles[record >> 2];
+    switch (record & 3) {
+      case 0:
+        return {t[0], t[1]};
+      case 1:
+        return {t[1], t[2]};
+      default:
+        return {t[0], t[2]};
+    }
+  }
 };
 
-uint64_t IncidenceKey(int32_t lo, int32_t hi, int slot) {
-  return (uint64_t(hi - lo) << (kLoBits + kSlotBits)) |
-         (uint64_t(lo) << kSlotBits) | uint64_t(slot);
-}
-
-// Insertion sort of a short list (a few entries per edge on average).
+// Sorts one edge's list by `key`: insertion sort for the usual handful of
+// entries, std::sort for the long lists of cospherical configurations.
 template <typename Key>
-void SortShort(int32_t* begin, int32_t* end, Key key) {
+void SortList(int32_t* begin, int32_t* end, Key key) {
+  if (end - begin > 16) {
+    std::sort(begin, end,
+              [&](int32_t a, int32_t b) { return key(a) < key(b); });
+    return;
+  }
   for (int32_t* i = begin + 1; i < end; ++i) {
     const int32_t v = *i;
     const int32_t k = key(v);
@@ -39,14 +51,14 @@ void SortShort(int32_t* begin, int32_t* end, Key key) {
 // the order a Delaunay backend happened to list it in.
 void CanonicalOrder(const std::vector<Triangle>& triangles, Adjacency* adj) {
   for (int32_t e = 0; e < adj->edge_count(); ++e) {
-    SortShort(adj->inner.data() + adj->inner_begin[e],
-              adj->inner.data() + adj->inner_begin[e + 1],
-              [&](int32_t t) { return triangles[t][1]; });
-    SortShort(adj->outer.data() + adj->outer_begin[e],
-              adj->outer.data() + adj->outer_begin[e + 1], [&](int32_t slot) {
-                const Triangle& t = triangles[slot >> 1];
-                return (slot & 1) == 0 ? t[2] : t[0];
-              });
+    SortList(adj->inner.data() + adj->inner_begin[e],
+             adj->inner.data() + adj->inner_begin[e + 1],
+             [&](int32_t t) { return triangles[t][1]; });
+    SortList(adj->outer.data() + adj->outer_begin[e],
+             adj->outer.data() + adj->outer_begin[e + 1], [&](int32_t slot) {
+               const Triangle& t = triangles[slot >> 1];
+               return (slot & 1) == 0 ? t[2] : t[0];
+             });
   }
 }
 
@@ -67,48 +79,45 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
                       "polygon has " + std::to_string(n) +
                           " vertices; the limit is 16777215");
   }
-  if (triangles.size() * 3 >=
-      static_cast<size_t>(std::numeric_limits<int32_t>::max())) {
+  if (triangles.size() >= (size_t{1} << 29)) {
     return MakeStatus(
         StatusCode::kResourceExhausted,
         "too many candidate triangles: " + std::to_string(triangles.size()));
   }
   RunTicker ticker(control, Stage::kAdjacency);
-  const auto tcount = static_cast<int32_t>(triangles.size());
-  // Incidences sorted by (span, lo), stable in (triangle, slot): two counting
-  // passes, linear in the input and interruptible, instead of a comparison
-  // sort.
-  FlatVector<Incidence> inc(3 * triangles.size()), tmp;
-  tmp.reserve(inc.size());
-  for (int32_t t = 0; t < tcount; ++t) {
-    const auto& [a, b, c] = triangles[t];
-    tmp.push_back({IncidenceKey(a, b, 0), t});
-    tmp.push_back({IncidenceKey(b, c, 1), t});
-    tmp.push_back({IncidenceKey(a, c, 2), t});
+  const EdgeOf edge_of{triangles};
+  // Incidences sorted by (span, lo), stable in (triangle, slot): two
+  // counting passes, linear and interruptible, over 4-byte records (the
+  // edge is looked up, not stored, to keep the buffers small: page faults
+  // dominate here).
+  const size_t records = 3 * triangles.size();
+  std::vector<int32_t> start(n + 1);
+  for (const Triangle& t : triangles) {
+    ++start[t[0] + 1];
+    ++start[t[1] + 1];
+    ++start[t[0] + 1];
+  }
+  for (int32_t d = 0; d < n; ++d) start[d + 1] += start[d];
+  FlatVector<uint32_t> by_lo(records), by_span(records);
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
     if (!ticker.Tick()) return ticker.status();
+    const Triangle& tri = triangles[t];
+    by_lo[start[tri[0]]++] = 4 * t;
+    by_lo[start[tri[1]]++] = 4 * t + 1;
+    by_lo[start[tri[0]]++] = 4 * t + 2;
   }
-  auto lo_of = [](const Incidence& x) {
-    return static_cast<int32_t>((x.key >> kSlotBits) & ((1u << kLoBits) - 1));
-  };
-  auto span_of = [](const Incidence& x) {
-    return static_cast<int32_t>(x.key >> (kLoBits + kSlotBits));
-  };
-  auto counting_pass = [&](const FlatVector<Incidence>& from,
-                           FlatVector<Incidence>* to, auto digit) {
-    std::vector<int32_t> start(n + 1, 0);
-    for (const Incidence& x : from) ++start[digit(x) + 1];
-    for (int32_t d = 0; d < n; ++d) start[d + 1] += start[d];
-    for (const Incidence& x : from) {
-      (*to)[start[digit(x)]++] = x;
-      if (!ticker.Tick()) return false;
-    }
-    return true;
-  };
-  if (!counting_pass(tmp, &inc, lo_of) || !counting_pass(inc, &tmp, span_of)) {
-    return ticker.status();
+  std::fill(start.begin(), start.end(), 0);
+  for (uint32_t r : by_lo) {
+    const auto [lo, hi] = edge_of(r);
+    ++start[hi - lo + 1];
   }
-  inc.swap(tmp);
-  tmp = {};
+  for (int32_t d = 0; d < n; ++d) start[d + 1] += start[d];
+  for (uint32_t r : by_lo) {
+    if (!ticker.Tick()) return ticker.status();
+    const auto [lo, hi] = edge_of(r);
+    by_span[start[hi - lo]++] = r;
+  }
+  by_lo = {};
 
   Adjacency& adj = *out;
   adj = Adjacency{};
@@ -117,13 +126,12 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   adj.inner.reserve(triangles.size());
   adj.outer.reserve(2 * triangles.size());
   std::vector<bool> has_polygon_edge(n, false);
-  uint64_t prev_edge = ~uint64_t{0};
-  for (const Incidence& x : inc) {
-    const uint64_t edge = x.key >> kSlotBits;
+  std::pair<int32_t, int32_t> prev_edge{-1, -1};
+  for (uint32_t r : by_span) {
+    const std::pair<int32_t, int32_t> edge = edge_of(r);
     if (edge != prev_edge) {
       prev_edge = edge;
-      const auto lo = static_cast<int32_t>(edge & ((1u << kLoBits) - 1));
-      const auto hi = lo + static_cast<int32_t>(edge >> kLoBits);
+      const auto [lo, hi] = edge;
       adj.edge_lo.push_back(lo);
       adj.edge_hi.push_back(hi);
       adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));
@@ -134,13 +142,13 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
         has_polygon_edge[n - 1] = true;
       }
     }
-    const int slot = static_cast<int>(x.key & 3);
-    adj.tri_edges[3 * x.triangle + slot] =
-        static_cast<int32_t>(adj.edge_lo.size()) - 1;
+    const auto t = static_cast<int32_t>(r >> 2);
+    const int slot = static_cast<int>(r & 3);
+    adj.tri_edges[3 * t + slot] = static_cast<int32_t>(adj.edge_lo.size()) - 1;
     if (slot == 2) {
-      adj.inner.push_back(x.triangle);
+      adj.inner.push_back(t);
     } else {
-      adj.outer.push_back(2 * x.triangle + slot);
+      adj.outer.push_back(2 * t + slot);
     }
   }
   adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));

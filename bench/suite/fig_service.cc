@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The service on loopback: dot-server and `dotctl load` against the same
+// load run in-process (`dotctl load --local`), for small, medium and large
+// polygons at several concurrencies. Requests skip the server's cache
+// (--no-cache) so both sides do the same work. Server and client share the
+// machine's cores, as they would on one node.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "measure.h"
+#include "plot.h"
+#include "suite.h"
+
+extern char** environ;
+
+namespace dot::bench {
+namespace {
+
+int FreeLoopbackPort() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof addr;
+  int port = 0;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0) {
+    port = ntohs(addr.sin_port);
+  }
+  ::close(fd);
+  return port;
+}
+
+std::string Run(const std::string& command) {
+  std::string out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buf[4096];
+  size_t got;
+  while ((got = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, got);
+  ::pclose(pipe);
+  return out;
+}
+
+double JsonNumber(const std::string& json, const std::string& key) {
+  const size_t at = json.find("\"" + key + "\":");
+  return at == std::string::npos
+             ? NAN
+             : std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+struct LoadResult {
+  double rps = NAN, p50 = NAN, p99 = NAN;
+  int errors = 0;
+};
+
+// `dotctl <global> load <mode> ...`: global is "-s address" for the server,
+// mode is "--local" for in-process.
+LoadResult Load(const std::string& dotctl, const std::string& global,
+                const std::string& mode, int n, int concurrency, int requests,
+                int reps) {
+  std::vector<double> rps, p50, p99;
+  LoadResult out;
+  for (int r = 0; r < reps; ++r) {
+    const std::string json =
+        Run(dotctl + " " + global + " load " + mode +
+            " --json --no-cache --curve monkey -n " + std::to_string(n) +
+            " -c " + std::to_string(concurrency) + " -r " +
+            std::to_string(requests) + " -d 60");
+    rps.push_back(JsonNumber(json, "throughput_rps"));
+    p50.push_back(JsonNumber(json, "p50"));
+    p99.push_back(JsonNumber(json, "p99"));
+    out.errors += static_cast<int>(JsonNumber(json, "errors"));
+  }
+  out.rps = Median(rps);
+  out.p50 = Median(p50);
+  out.p99 = Median(p99);
+  return out;
+}
+
+}  // namespace
+
+void RunService(const Config& config, std::ostream& report) {
+  report << "## Service on loopback\n\n";
+  const int port = FreeLoopbackPort();
+  const std::string address = "127.0.0.1:" + std::to_string(port);
+  const std::string listen = "--listen=" + address;
+  std::vector<std::string> args = {config.server_path, listen,
+                                   "--metrics-port=0", "--log-level=warn"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (port == 0 || ::posix_spawn(&pid, config.server_path.c_str(), nullptr,
+                                 nullptr, argv.data(), environ) != 0) {
+    report << "Could not start `" << config.server_path << "`.\n\n";
+    return;
+  }
+  const std::string dotctl = config.dotctl_path;
+  bool up = false;
+  for (int i = 0; i < 100 && !up; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    up = std::system(
+             (dotctl + " -s " + address + " health >/dev/null 2>&1").c_str()) ==
+         0;
+  }
+  struct Case {
+    int n, requests;
+    std::vector<int> concurrency;
+  };
+  const std::vector<Case> cases =
+      config.quick ? std::vector<Case>{{100, 200, {1, 4}}, {2000, 10, {2}}}
+                   : std::vector<Case>{{100, 3000, {1, 2, 4, 16}},
+                                       {2000, 150, {1, 2, 4}},
+                                       {20000, 12, {1, 2}}};
+  const int reps = config.quick ? 1 : config.reps;
+  std::ofstream csv(config.Path("service.csv"));
+  csv << "n,concurrency,mode,throughput_rps,p50_ms,p99_ms,errors\n";
+  report << "`dotctl load` against `dot-server` (2 compute threads) on "
+            "127.0.0.1, and the same load in-process (`--local`); median of "
+         << reps << " runs each. Data: `service.csv`.\n\n"
+         << "| n | concurrency | server req/s | in-process req/s | server / "
+            "in-process | server p50 / p99 ms | in-process p50 / p99 ms | "
+            "errors |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  Series remote_s{"server", {}, {}}, local_s{"in-process", {}, {}};
+  for (const Case& c : cases) {
+    for (int conc : c.concurrency) {
+      std::cerr << "service: n=" << c.n << " c=" << conc << "\n";
+      const LoadResult remote =
+          up ? Load(dotctl, "-s " + address, "", c.n, conc, c.requests, reps)
+             : LoadResult{};
+      const LoadResult local =
+          Load(dotctl, "", "--local", c.n, conc, c.requests, reps);
+      for (const auto& [mode, r] :
+           {std::pair{"server", remote}, std::pair{"in-process", local}}) {
+        csv << c.n << "," << conc << "," << mode << "," << r.rps << "," << r.p50
+            << "," << r.p99 << "," << r.errors << "\n";
+      }
+      report << "| " << c.n << " | " << conc << " | " << Fixed(remote.rps)
+             << " | " << Fixed(local.rps) << " | "
+             << Fixed(remote.rps / local.rps, 2) << " | " << Fixed(remote.p50)
+             << " / " << Fixed(remote.p99) << " | " << Fixed(local.p50) << " / "
+             << Fixed(local.p99) << " | " << remote.errors << " |\n";
+    }
+  }
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  report << "\n";
+}
+
+}  // namespace dot::bench
