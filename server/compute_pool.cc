@@ -27,6 +27,21 @@ bool ComputePool::TrySubmit(std::function<void()> task) {
   return true;
 }
 
+bool ComputePool::TryRunHere(const std::function<void()>& task) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (stopping_ || !queue_.empty() || busy_ >= threads()) return false;
+    ++busy_;
+  }
+  task();
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    --busy_;
+  }
+  cv_.notify_one();  // the slot may be what a queued task waits for
+  return true;
+}
+
 int ComputePool::queued() const {
   std::lock_guard<std::mutex> lock(mu_);
   return static_cast<int>(queue_.size());
@@ -42,15 +57,20 @@ void ComputePool::Work() {
     std::function<void()> task;
     {
       std::unique_lock<std::mutex> lock(mu_);
-      cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      cv_.wait(lock, [this] {
+        return stopping_ || (!queue_.empty() && busy_ < threads());
+      });
       if (queue_.empty()) return;  // stopping and drained
       task = std::move(queue_.front());
       queue_.pop_front();
       ++busy_;
     }
     task();
-    std::lock_guard<std::mutex> lock(mu_);
-    --busy_;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      --busy_;
+    }
+    cv_.notify_one();
   }
 }
 

@@ -37,6 +37,10 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   add("--cache-mb", &c->cache_mb, "DOT_CACHE_MB",
       "memory for recently used search spaces, so re-solving a polygon with "
       "new weights runs only the dynamic program (0: no cache)");
+  add("--inline-max-vertices", &c->inline_max_vertices,
+      "DOT_INLINE_MAX_VERTICES",
+      "Triangulate calls up to this many vertices run on the RPC thread when "
+      "a compute slot is free, saving two thread handoffs (0: never)");
   add("--delaunay-helpers", &c->delaunay_helpers, "DOT_DELAUNAY_HELPERS",
       "TetGen helper processes (-1: one per thread, 0: in-process, "
       "serialized)");

@@ -73,6 +73,7 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
   if (config.cache_mb > 0) {
     s->cache_ = std::make_unique<SpaceCache>(config.cache_mb << 20);
   }
+  limits.inline_max_vertices = config.inline_max_vertices;
   limits.source_archive = config.source_archive;
   limits.source_url = config.source_url;
   s->service_ = std::make_unique<TriangulatorService>(

@@ -124,13 +124,17 @@ std::shared_ptr<TriangulatorService::Job> TriangulatorService::Prepare(
   return job;
 }
 
-bool TriangulatorService::Submit(const std::shared_ptr<Job>& job) {
+bool TriangulatorService::Submit(const std::shared_ptr<Job>& job,
+                                 bool may_run_here) {
   {
     std::lock_guard<std::mutex> lock(jobs_mu_);
     jobs_.insert(job.get());
   }
   ++inflight_;
   metrics_->inflight().Set(inflight_);
+  if (may_run_here && pool_->TryRunHere([this, &job] { Run(*job); })) {
+    return true;
+  }
   const bool ok = pool_->TrySubmit([this, job] { Run(*job); });
   metrics_->queue_depth().Set(pool_->queued());
   if (!ok) {
@@ -286,7 +290,11 @@ grpc::Status TriangulatorService::Triangulate(
     Finish(rejected, error, 0);
     return error;
   }
-  if (!Submit(job)) {
+  // Small requests without progress reports skip the handoff to a worker.
+  const bool small = job->wire.progress_interval_ms() == 0 &&
+                     job->problem.vertices.size() <=
+                         static_cast<size_t>(limits_.inline_max_vertices);
+  if (!Submit(job, small)) {
     error = grpc::Status(
         grpc::StatusCode::RESOURCE_EXHAUSTED,
         "server at capacity: " + std::to_string(limits_.queue_size) +
@@ -384,7 +392,7 @@ grpc::Status TriangulatorService::TriangulateBatch(
         std::lock_guard<std::mutex> lock(batch.mu);
         batch.running.insert(job);
       }
-      if (!Submit(job)) {
+      if (!Submit(job, false)) {
         {
           std::lock_guard<std::mutex> lock(batch.mu);
           batch.running.erase(job);

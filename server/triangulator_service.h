@@ -32,6 +32,9 @@ struct ServiceLimits {
   int threads = 1;
   int queue_size = 64;
   DelaunayBackend delaunay_backend = DelaunayBackend::kCgal;
+  // Triangulate calls up to this size run on the RPC's own thread when a
+  // compute slot is free (no handoff); larger ones and batches are queued.
+  int inline_max_vertices = 500;
   std::string source_archive;
   std::string source_url;
 };
@@ -69,7 +72,9 @@ class TriangulatorService final : public v1::Triangulator::Service {
   std::shared_ptr<Job> Prepare(const v1::TriangulateRequest& request,
                                grpc::ServerContext* context,
                                const std::string& rpc, grpc::Status* error);
-  bool Submit(const std::shared_ptr<Job>& job);
+  // Queues the job, or with `may_run_here` runs it on this thread when a
+  // compute slot is free. False when the queue is full.
+  bool Submit(const std::shared_ptr<Job>& job, bool may_run_here);
   void Run(Job& job);
   // Streams chunks and summary of a finished job, or returns its error.
   grpc::Status Respond(

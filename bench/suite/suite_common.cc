@@ -35,7 +35,7 @@ std::vector<HoleCase> MakeHoles(const Config& config, int count,
                                 int min_triangles, int max_triangles) {
   std::vector<HoleCase> holes;
   std::vector<std::pair<std::string, MeshData>> meshes;
-  for (const char* name : {"elephant", "armadillo", "bunny"}) {
+  for (const char* name : {"armadillo", "refined_elephant", "bunny00"}) {
     MeshData m;
     const std::string path = config.mesh_dir + "/" + name + ".off";
     if (ReadMeshFile(path, &m).ok()) {

@@ -41,6 +41,7 @@ double MinBending(BendingWeights w) {
 struct InnerCandidate {
   double b;
   int32_t u;
+  int32_t rank;  // position in the edge's (canonically ordered) inner list
   Vec3 normal;
 };
 
@@ -79,12 +80,14 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
     for (int32_t i = adj.inner_begin[e]; i < adj.inner_begin[e + 1]; ++i) {
       const int32_t u = adj.inner[i];
       const double b = weight[u] + slot_cost[2 * u] + slot_cost[2 * u + 1];
-      if (b < kInf) cand.push_back({b, u, unit_normals[u]});
+      if (b < kInf) cand.push_back({b, u, i, unit_normals[u]});
     }
     if (cand.empty()) continue;
     std::sort(cand.begin(), cand.end(),
               [](const InnerCandidate& x, const InnerCandidate& y) {
-                return x.b < y.b || (x.b == y.b && x.u < y.u);
+                // Ties by list position, not triangle id: results must not
+                // depend on the order a backend listed the faces in.
+                return x.b < y.b || (x.b == y.b && x.rank < y.rank);
               });
     if (e == adj.root) {
       root_cost = cand.front().b;
