@@ -54,19 +54,31 @@ void RunCurves(const Config& config, std::ostream& report) {
   const MetricWeights area = OneMetric(Metric::kArea);
   const MetricWeights sqd = OneMetric(Metric::kSquaredDihedral);
   for (Curve curve : kPaperCurves) {
-    std::map<std::string, bool> capped;  // per method
+    std::map<std::string, bool> capped;                  // per method
+    std::map<std::string, std::pair<int, double>> last;  // n, ms
+    // Skips a method whose last time, grown quadratically, passes the cap
+    // (the pathological curves have ~n^2 Delaunay triangles).
+    auto skip = [&](const std::string& method, int n) {
+      if (capped[method]) return true;
+      const auto it = last.find(method);
+      if (it == last.end()) return false;
+      const double grow = static_cast<double>(n) / it->second.first;
+      return it->second.second * grow * grow > 1000 * config.cap_s;
+    };
     for (int n : Sizes(config)) {
-      if (capped["dot1"] && capped["dot2"] && capped["peer"]) break;
+      if (skip("dot1", n) && skip("dot2", n) && skip("peer", n)) break;
       Point pt;
       pt.curve = CurveName(curve);
       pt.n = n;
       const Problem p{MakeCurve(curve, n), {}, area};
       std::cerr << "curves: " << pt.curve << " n=" << n << "\n";
       Result r1, r2;
-      if (!capped["dot1"]) {
+      if (!skip("dot1", n)) {
         pt.dot1 = Measure(config.reps, config.long_run_s, config.cap_s,
                           [&] { r1 = SolveWith(p, area); });
-        capped["dot1"] = pt.dot1.capped;
+        capped["dot1"] =
+            pt.dot1.capped || r1.status.code == StatusCode::kResourceExhausted;
+        last["dot1"] = {n, pt.dot1.ms};
         pt.status = StatusCodeName(r1.status.code);
         pt.delaunay_triangles = r1.stats.delaunay_triangles;
         pt.table_bytes_dot1 = r1.stats.table_bytes;
@@ -90,21 +102,24 @@ void RunCurves(const Config& config, std::ostream& report) {
           });
         }
       }
-      if (!capped["dot2"]) {
+      if (!skip("dot2", n)) {
         pt.dot2 = Measure(config.reps, config.long_run_s, config.cap_s,
                           [&] { r2 = SolveWith(p, sqd); });
-        capped["dot2"] = pt.dot2.capped;
+        capped["dot2"] =
+            pt.dot2.capped || r2.status.code == StatusCode::kResourceExhausted;
+        last["dot2"] = {n, pt.dot2.ms};
         pt.table_bytes_dot2 = r2.stats.table_bytes;
         if (r2.status.ok()) {
           pt.our_sqd = r2.metric_costs[Metric::kSquaredDihedral];
         }
       }
       // The peer where the targets compare (and below), up to the cap.
-      if (!capped["peer"] && (config.quick || n <= 10000)) {
+      if (!skip("peer", n) && (config.quick || n <= 10000)) {
         std::vector<Triangle> patch;
         pt.peer = Measure(config.reps, config.long_run_s, config.cap_s,
                           [&] { patch = CgalFillHole(p.vertices); });
         capped["peer"] = pt.peer.capped;
+        last["peer"] = {n, pt.peer.ms};
         pt.peer_ok = patch.size() + 2 == p.vertices.size();
         if (pt.peer_ok) {
           const MetricValues m = EvaluateMetrics(p.vertices, {}, patch);
