@@ -195,9 +195,10 @@ void RunCurves(const Config& config, std::ostream& report) {
   report << "\n| curve | n | Delaunay triangles | Delaunay CGAL / TetGen ms "
             "| DOT1 ms | after Delaunay | DOT2 ms | cached re-solve ms | "
             "CGAL hole filling ms | DOT1 / CGAL | DOT2 / CGAL | cached / "
-            "CGAL | heap DOT2 / CGAL | sq. dihedral DOT2 / CGAL |\n"
-            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:"
-            "|---:|\n";
+            "CGAL | heap DOT1 / CGAL | heap DOT2 / CGAL | sq. dihedral DOT2 / "
+            "CGAL "
+            "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+            "---:|---:|---:|\n";
   for (const Point& p : points) {
     auto ratio = [](double a, double b) {
       return std::isnan(a) || std::isnan(b) || b == 0 ? std::string("-")
@@ -215,6 +216,7 @@ void RunCurves(const Config& config, std::ostream& report) {
            << ratio(ok(p, p.dot1.ms), p.peer_ok ? p.peer.ms : NAN) << " | "
            << ratio(ok(p, p.dot2.ms), p.peer_ok ? p.peer.ms : NAN) << " | "
            << ratio(ok(p, p.cached.ms), p.peer_ok ? p.peer.ms : NAN) << " | "
+           << ratio(ok(p, p.dot1.heap), p.peer_ok ? p.peer.heap : NAN) << " | "
            << ratio(ok(p, p.dot2.heap), p.peer_ok ? p.peer.heap : NAN) << " | "
            << ratio(p.our_sqd, p.peer_sqd) << " |\n";
   }

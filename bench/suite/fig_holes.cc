@@ -159,7 +159,7 @@ void RunHoles(const Config& config, std::ostream& report) {
   }
   int triangulable = 0, with_protection = 0, peer_ok = 0, both = 0,
       lower_sqd = 0, equal_sqd = 0;
-  std::vector<double> t1, t2, tp, ratio1, ratio2;
+  std::vector<double> ratio1, ratio2, ratio1_large, heap1, heap2, after;
   int lo_n = 1 << 30, hi_n = 0;
   for (const HolePoint& p : points) {
     lo_n = std::min(lo_n, p.n);
@@ -171,6 +171,10 @@ void RunHoles(const Config& config, std::ostream& report) {
       ++both;
       ratio1.push_back(p.dot1.ms / p.peer.ms);
       ratio2.push_back(p.dot2.ms / p.peer.ms);
+      if (p.n >= 1000) ratio1_large.push_back(p.dot1.ms / p.peer.ms);
+      heap1.push_back(p.dot1.heap / p.peer.heap);
+      heap2.push_back(p.dot2.heap / p.peer.heap);
+      after.push_back((p.dot1.ms - p.delaunay_ms) / p.delaunay_ms);
       const double rel = (p.our_sqd - p.peer_sqd) / std::max(p.peer_sqd, 1e-12);
       if (rel < -1e-9) ++lower_sqd;
       if (std::abs(rel) <= 1e-9) ++equal_sqd;
@@ -200,7 +204,13 @@ void RunHoles(const Config& config, std::ostream& report) {
          << "angles is lower than CGAL's on " << lower_sqd << " and equal on "
          << equal_sqd << " ("
          << Fixed(100.0 * (lower_sqd + equal_sqd) / std::max(both, 1), 1)
-         << "% not worse).\n\n";
+         << "% not worse).\n- Boundaries with n >= 1000: median DOT1/CGAL "
+         << Fixed(Median(ratio1_large), 2) << " over " << ratio1_large.size()
+         << ".\n- Median peak heap DOT1/CGAL " << Fixed(Median(heap1), 2)
+         << ", DOT2/CGAL " << Fixed(Median(heap2), 2)
+         << ".\n- DOT1 after the Delaunay step (adjacency, weights, dynamic "
+            "program, tiling, result) as a share of the Delaunay step: median "
+         << Fixed(100 * Median(after), 0) << "%.\n\n";
 }
 
 }  // namespace dot::bench

@@ -19,7 +19,8 @@ std::vector<double> RenderPlot(const Plot& plot) {
      << "set output '" << plot.path << "'\n"
      << "set title '" << plot.title << "'\n"
      << "set xlabel '" << plot.xlabel << "'\nset ylabel '" << plot.ylabel
-     << "'\nset logscale xy\nset grid\nset key left top\n";
+     << "'\nset logscale xy\nset grid\nset key left top\nset termoption "
+        "noenhanced\n";
   std::string plots;
   for (size_t i = 0; i < plot.series.size(); ++i) {
     const Series& s = plot.series[i];
