@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -38,7 +39,7 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
     int n = 100;
     std::vector<std::string> files;
     RequestFlags request;
-    bool json = false, local = false;
+    bool json = false, local = false, batch = false;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
@@ -73,6 +74,12 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
   cmd->add_flag("--json", f->json, "print the report as JSON");
   cmd->add_flag("--local", f->local,
                 "call the core in-process (the baseline for overhead)");
+  cmd->add_flag("--batch", f->batch,
+                "send over TriangulateBatch streams (one per --channels) "
+                "keeping --concurrency requests in flight, instead of one "
+                "call per polygon")
+      ->excludes("--local")
+      ->excludes("--rate");
   AddRequestFlags(cmd, &f->request);
   cmd->callback([f, ctx] {
     std::vector<PolygonData> polygons;
@@ -138,8 +145,92 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
         if (out.status.ok()) latencies.push_back(out.latency_ms);
       }
     };
+    auto record = [&](const std::string& label, double ms) {
+      std::lock_guard<std::mutex> lock(mu);
+      ++by_status[label];
+      if (label == "OK" || label == "NO_TRIANGULATION") latencies.push_back(ms);
+    };
+    // One TriangulateBatch stream: a writer keeps `window` requests in
+    // flight, this thread reads results as they finish, in any order.
+    auto stream_worker = [&](int s, int window) {
+      grpc::ClientContext context;
+      const auto left = end - Clock::now();
+      context.set_deadline(std::chrono::system_clock::now() + left +
+                           std::chrono::milliseconds(static_cast<int64_t>(
+                               ctx->connection.timeout_s * 1000)));
+      auto stream = stubs[s]->TriangulateBatch(&context);
+      std::mutex m;
+      std::condition_variable cv;
+      int in_flight = 0;
+      bool closed = false;
+      std::map<std::string, Clock::time_point> sent;
+      std::thread writer([&] {
+        for (;;) {
+          {
+            std::unique_lock<std::mutex> lock(m);
+            cv.wait(lock, [&] { return closed || in_flight < window; });
+            if (closed) break;
+          }
+          const int i = next++;
+          if (i >= f->requests || Clock::now() >= end) break;
+          v1::TriangulateRequest request = requests[i % requests.size()];
+          request.set_id(std::to_string(i));
+          {
+            std::lock_guard<std::mutex> lock(m);
+            sent[request.id()] = Clock::now();
+            ++in_flight;
+          }
+          if (!stream->Write(request)) break;
+        }
+        stream->WritesDone();
+      });
+      v1::TriangulateResponse msg;
+      while (stream->Read(&msg)) {
+        if (!msg.has_summary() && !msg.has_error()) continue;
+        std::string label =
+            msg.has_error()
+                ? std::string(wire::GrpcCodeName(
+                      static_cast<grpc::StatusCode>(msg.error().code())))
+            : msg.summary().status() == v1::RESULT_STATUS_OK
+                ? "OK"
+                : "NO_TRIANGULATION";
+        Clock::time_point t0;
+        {
+          std::lock_guard<std::mutex> lock(m);
+          t0 = sent[msg.id()];
+          sent.erase(msg.id());
+          --in_flight;
+        }
+        cv.notify_one();
+        record(label,
+               std::chrono::duration<double, std::milli>(Clock::now() - t0)
+                   .count());
+      }
+      {
+        std::lock_guard<std::mutex> lock(m);
+        closed = true;
+      }
+      cv.notify_one();
+      writer.join();
+      const grpc::Status status = stream->Finish();
+      // Requests still unanswered failed with the stream.
+      for (size_t k = 0; k < sent.size(); ++k) {
+        record(std::string(wire::GrpcCodeName(status.ok()
+                                                  ? grpc::StatusCode::DATA_LOSS
+                                                  : status.error_code())),
+               0);
+      }
+    };
     std::vector<std::thread> threads;
-    for (int w = 0; w < f->concurrency; ++w) threads.emplace_back(worker, w);
+    if (f->batch) {
+      const int streams = static_cast<int>(stubs.size());
+      for (int s = 0; s < streams; ++s) {
+        const int window = (f->concurrency + streams - 1 - s) / streams;
+        if (window > 0) threads.emplace_back(stream_worker, s, window);
+      }
+    } else {
+      for (int w = 0; w < f->concurrency; ++w) threads.emplace_back(worker, w);
+    }
     for (auto& t : threads) t.join();
     const double seconds =
         std::chrono::duration<double>(Clock::now() - start).count();

@@ -37,6 +37,9 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   add("--cache-mb", &c->cache_mb, "DOT_CACHE_MB",
       "memory for recently used search spaces, so re-solving a polygon with "
       "new weights runs only the dynamic program (0: no cache)");
+  add("--malloc-keep-mb", &c->malloc_keep_mb, "DOT_MALLOC_KEEP_MB",
+      "freed memory the allocator keeps for the next requests instead of "
+      "returning it to the kernel (at most 1024; 0: glibc's defaults)");
   add("--inline-max-vertices", &c->inline_max_vertices,
       "DOT_INLINE_MAX_VERTICES",
       "Triangulate calls up to this many vertices run on the RPC thread when "

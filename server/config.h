@@ -23,9 +23,10 @@ struct ServerConfig {
   int all_space_max_vertices = 40;        // auto fallback to 'all'
   std::string delaunay_backend = "cgal";  // default of requests
   int64_t cache_mb = 256;                 // search-space cache; 0: off
-  int inline_max_vertices = 500;          // run small calls on the RPC thread
-  int delaunay_helpers = -1;  // -1: one per thread; 0: in-process TetGen
-  std::string helper_path;    // default: next to the server binary
+  int64_t malloc_keep_mb = 512;   // freed memory kept for reuse; 0: glibc's
+  int inline_max_vertices = 500;  // run small calls on the RPC thread
+  int delaunay_helpers = -1;      // -1: one per thread; 0: in-process TetGen
+  std::string helper_path;        // default: next to the server binary
   int64_t helper_memory_mb = 4096;
   int metrics_port = 9090;  // 0: off
   std::string metrics_bind = "0.0.0.0";

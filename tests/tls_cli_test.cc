@@ -190,6 +190,13 @@ TEST_F(CliTest, BatchLoadInfoAndHelp) {
   EXPECT_NE(load.out.find("\"requests\":30,\"succeeded\":30,\"errors\":0"),
             std::string::npos)
       << load.out;
+  // Over two TriangulateBatch streams, five requests in flight.
+  const CliRun streamed =
+      Dotctl(flag_ + "load --batch --channels 2 -c 5 -r 40 -n 80 --json");
+  EXPECT_EQ(streamed.code, 0) << streamed.out;
+  EXPECT_NE(streamed.out.find("\"requests\":40,\"succeeded\":40,\"errors\":0"),
+            std::string::npos)
+      << streamed.out;
   const CliRun info = Dotctl(flag_ + "info");
   EXPECT_EQ(info.code, 0);
   EXPECT_NE(info.out.find("AGPL-3.0-or-later"), std::string::npos);

@@ -31,7 +31,8 @@ struct HolePoint {
 
 }  // namespace
 
-void RunHoles(const Config& config, std::ostream& report) {
+int RunHoles(const Config& config, std::ostream& report) {
+  int invalid = 0, checked = 0;
   const int count = config.quick ? 12 : config.holes;
   const std::vector<HoleCase> holes = MakeHoles(config, count, 100, 10000);
   const MetricWeights area = OneMetric(Metric::kArea);
@@ -54,6 +55,8 @@ void RunHoles(const Config& config, std::ostream& report) {
     pt.delaunay_triangles = r1.stats.delaunay_triangles;
     pt.delaunay_ms = r1.stats.delaunay_ms;
     pt.triangulable = r1.status.ok();
+    invalid += InvalidOutput(r1, h.mesh + " hole DOT1");
+    checked += r1.status.ok();
     Options protect = plain;
     protect.protect_edges = true;
     if (pt.triangulable) {
@@ -61,10 +64,14 @@ void RunHoles(const Config& config, std::ostream& report) {
     } else {
       const Result rp = SolveWith(p, area, protect);
       pt.protected_ok = rp.status.ok();
+      invalid += InvalidOutput(rp, h.mesh + " hole DOT1, edges protected");
+      checked += rp.status.ok();
       pt.inserted = static_cast<int>(rp.inserted.size());
     }
     pt.dot2 = Measure(config.reps, config.long_run_s, config.cap_s,
                       [&] { r2 = SolveWith(p, sqd, plain); });
+    invalid += InvalidOutput(r2, h.mesh + " hole DOT2");
+    checked += r2.status.ok();
     if (r2.status.ok()) {
       pt.our_sqd = r2.metric_costs[Metric::kSquaredDihedral];
     }
@@ -211,6 +218,10 @@ void RunHoles(const Config& config, std::ostream& report) {
          << ".\n- DOT1 after the Delaunay step (adjacency, weights, dynamic "
             "program, tiling, result) as a share of the Delaunay step: median "
          << Fixed(100 * Median(after), 0) << "%.\n\n";
+  report << "Every DOT1 and DOT2 patch (" << checked << ") was validated: "
+         << (invalid == 0 ? "all valid" : std::to_string(invalid) + " INVALID")
+         << ".\n\n";
+  return invalid;
 }
 
 }  // namespace dot::bench

@@ -129,30 +129,38 @@ void RunService(const Config& config, std::ostream& report) {
   std::ofstream csv(config.Path("service.csv"));
   csv << "n,concurrency,mode,throughput_rps,p50_ms,p99_ms,errors\n";
   report << "`dotctl load` against `dot-server` (2 compute threads) on "
-            "127.0.0.1, and the same load in-process (`--local`); median of "
+            "127.0.0.1, one call per polygon and over TriangulateBatch "
+            "streams (`--batch`), and the same load in-process (`--local`); "
+            "median of "
          << reps << " runs each. Data: `service.csv`.\n\n"
-         << "| n | concurrency | server req/s | in-process req/s | server / "
-            "in-process | server p50 / p99 ms | in-process p50 / p99 ms | "
-            "errors |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  Series remote_s{"server", {}, {}}, local_s{"in-process", {}, {}};
+         << "| n | concurrency | in-process req/s | server req/s (ratio) | "
+            "batch req/s (ratio) | in-process p50 / p99 ms | server p50 / p99 "
+            "ms | errors |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Case& c : cases) {
     for (int conc : c.concurrency) {
       std::cerr << "service: n=" << c.n << " c=" << conc << "\n";
-      const LoadResult remote =
-          up ? Load(dotctl, "-s " + address, "", c.n, conc, c.requests, reps)
-             : LoadResult{};
+      const std::string server = "-s " + address;
       const LoadResult local =
           Load(dotctl, "", "--local", c.n, conc, c.requests, reps);
+      const LoadResult remote =
+          up ? Load(dotctl, server, "", c.n, conc, c.requests, reps)
+             : LoadResult{};
+      const LoadResult batch =
+          up ? Load(dotctl, server, "--batch", c.n, conc, c.requests, reps)
+             : LoadResult{};
       for (const auto& [mode, r] :
-           {std::pair{"server", remote}, std::pair{"in-process", local}}) {
+           {std::pair{"in-process", local}, std::pair{"server", remote},
+            std::pair{"server-batch", batch}}) {
         csv << c.n << "," << conc << "," << mode << "," << r.rps << "," << r.p50
             << "," << r.p99 << "," << r.errors << "\n";
       }
-      report << "| " << c.n << " | " << conc << " | " << Fixed(remote.rps)
-             << " | " << Fixed(local.rps) << " | "
-             << Fixed(remote.rps / local.rps, 2) << " | " << Fixed(remote.p50)
-             << " / " << Fixed(remote.p99) << " | " << Fixed(local.p50) << " / "
-             << Fixed(local.p99) << " | " << remote.errors << " |\n";
+      report << "| " << c.n << " | " << conc << " | " << Fixed(local.rps)
+             << " | " << Fixed(remote.rps) << " ("
+             << Fixed(remote.rps / local.rps, 2) << ") | " << Fixed(batch.rps)
+             << " (" << Fixed(batch.rps / local.rps, 2) << ") | "
+             << Fixed(local.p50) << " / " << Fixed(local.p99) << " | "
+             << Fixed(remote.p50) << " / " << Fixed(remote.p99) << " | "
+             << remote.errors + batch.errors << " |\n";
     }
   }
   ::kill(pid, SIGTERM);

@@ -48,8 +48,9 @@ int main(int argc, char** argv) {
   };
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream body;
-  if (wanted("curves")) dot::bench::RunCurves(config, body);
-  if (wanted("holes")) dot::bench::RunHoles(config, body);
+  int invalid = 0;
+  if (wanted("curves")) invalid += dot::bench::RunCurves(config, body);
+  if (wanted("holes")) invalid += dot::bench::RunHoles(config, body);
   if (wanted("gk")) dot::bench::RunGk(config, body);
   if (wanted("optimality")) dot::bench::RunOptimality(config, body);
   if (wanted("service")) dot::bench::RunService(config, body);
@@ -72,5 +73,5 @@ int main(int argc, char** argv) {
             "a call (TetGen, CGAL and our tables counted alike).\n\n"
          << body.str();
   std::cout << config.Path("report.md") << "\n";
-  return 0;
+  return invalid == 0 ? 0 : 1;
 }

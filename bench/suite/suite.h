@@ -30,8 +30,11 @@ struct Config {
 
 // Sizes are the paper's where the issue names them; each function documents
 // what it measures.
-void RunCurves(const Config& config, std::ostream& report);
-void RunHoles(const Config& config, std::ostream& report);
+// These two also validate every mesh they produce (ValidateMesh, exact
+// intersection tests, outside the timings) and return how many were
+// invalid.
+int RunCurves(const Config& config, std::ostream& report);
+int RunHoles(const Config& config, std::ostream& report);
 void RunGk(const Config& config, std::ostream& report);
 void RunOptimality(const Config& config, std::ostream& report);
 void RunService(const Config& config, std::ostream& report);
@@ -44,6 +47,9 @@ std::string Mib(double bytes);                // "12.3 MiB", "-" for NaN
 Result SolveWith(const Problem& problem, const MetricWeights& weights,
                  const Options& options = {}, const Control& control = {});
 MetricWeights OneMetric(Metric m);
+// 1 when `r` succeeded with a mesh that fails ValidateMesh (reported on
+// stderr), else 0.
+int InvalidOutput(const Result& r, const std::string& what);
 
 // Hole boundaries grown on the libcgal-demo meshes in config.mesh_dir:
 // `count` of them, sizes log-uniform in [min_triangles, max_triangles],

@@ -25,6 +25,15 @@ Result SolveWith(const Problem& problem, const MetricWeights& weights,
   return Triangulate(p, options, control);
 }
 
+int InvalidOutput(const Result& r, const std::string& what) {
+  if (!r.status.ok()) return 0;
+  const MeshReport report = ValidateMesh(r.vertices, r.polygon, r.triangles);
+  if (report.valid()) return 0;
+  std::cerr << "dot-bench: INVALID output for " << what << ": "
+            << report.first_problem << "\n";
+  return 1;
+}
+
 MetricWeights OneMetric(Metric m) {
   MetricWeights w;
   w[m] = 1;
