@@ -120,6 +120,11 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
     const auto start = Clock::now();
     const auto end = start + std::chrono::milliseconds(
                                  static_cast<int64_t>(f->duration_s * 1000));
+    auto record = [&](const std::string& label, double ms) {
+      std::lock_guard<std::mutex> lock(mu);
+      ++by_status[label];
+      if (label == "OK" || label == "NO_TRIANGULATION") latencies.push_back(ms);
+    };
     auto worker = [&](int w) {
       for (;;) {
         const int i = next++;
@@ -140,15 +145,8 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
         if (out.status.ok() && out.summary.status() != v1::RESULT_STATUS_OK) {
           label = "NO_TRIANGULATION";
         }
-        std::lock_guard<std::mutex> lock(mu);
-        ++by_status[label];
-        if (out.status.ok()) latencies.push_back(out.latency_ms);
+        record(label, out.latency_ms);
       }
-    };
-    auto record = [&](const std::string& label, double ms) {
-      std::lock_guard<std::mutex> lock(mu);
-      ++by_status[label];
-      if (label == "OK" || label == "NO_TRIANGULATION") latencies.push_back(ms);
     };
     // One TriangulateBatch stream: a writer keeps `window` requests in
     // flight, this thread reads results as they finish, in any order.

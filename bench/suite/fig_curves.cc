@@ -34,17 +34,12 @@ std::vector<int> Sizes(const Config& c) {
   return {50, 100, 200, 500, 1000, 2000, 5000, 10000, 50000};
 }
 
-// Medians of the stage times reported by the core over `reps` solves.
-void StageTimes(const Problem& p, const Options& o, int reps, double* delaunay,
-                double* after) {
-  std::vector<double> d, a;
-  for (int r = 0; r < reps; ++r) {
-    const Result res = Triangulate(p, o);
-    d.push_back(res.stats.delaunay_ms);
-    a.push_back(res.stats.adjacency_ms + res.stats.dp_ms + res.stats.tiling_ms);
-  }
-  *delaunay = Median(d);
-  if (after != nullptr) *after = Median(a);
+// Median time of the Delaunay step the core reports over `reps` solves.
+double DelaunayMs(const Problem& p, const Options& o, int reps) {
+  std::vector<double> ms;
+  for (int r = 0; r < reps; ++r)
+    ms.push_back(Triangulate(p, o).stats.delaunay_ms);
+  return Median(ms);
 }
 
 }  // namespace
@@ -75,8 +70,13 @@ int RunCurves(const Config& config, std::ostream& report) {
       std::cerr << "curves: " << pt.curve << " n=" << n << "\n";
       Result r1, r2;
       if (!skip("dot1", n)) {
-        pt.dot1 = Measure(config.reps, config.long_run_s, config.cap_s,
-                          [&] { r1 = SolveWith(p, area); });
+        std::vector<double> delaunay_ms, after_ms;  // per run, from the core
+        pt.dot1 = Measure(config.reps, config.long_run_s, config.cap_s, [&] {
+          r1 = SolveWith(p, area);
+          delaunay_ms.push_back(r1.stats.delaunay_ms);
+          after_ms.push_back(r1.stats.adjacency_ms + r1.stats.dp_ms +
+                             r1.stats.tiling_ms);
+        });
         capped["dot1"] =
             pt.dot1.capped || r1.status.code == StatusCode::kResourceExhausted;
         last["dot1"] = {n, pt.dot1.ms};
@@ -88,10 +88,11 @@ int RunCurves(const Config& config, std::ostream& report) {
         if (r1.status.ok()) pt.our_area = r1.metric_costs[Metric::kArea];
         if (r1.status.ok() && !pt.dot1.capped) {
           const int reps = pt.dot1.runs;
-          StageTimes(p, {}, reps, &pt.delaunay_cgal_ms, &pt.after_delaunay_ms);
+          pt.delaunay_cgal_ms = Median(delaunay_ms);
+          pt.after_delaunay_ms = Median(after_ms);
           Options tetgen;
           tetgen.delaunay = DelaunayBackend::kTetgen;
-          StageTimes(p, tetgen, reps, &pt.delaunay_tetgen_ms, nullptr);
+          pt.delaunay_tetgen_ms = DelaunayMs(p, tetgen, reps);
           // A user dragging a weight slider: the same polygon, new weights.
           SpaceCache cache(int64_t{2} << 30);
           Control control;

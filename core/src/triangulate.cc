@@ -266,17 +266,19 @@ Result Triangulate(const Problem& problem, const Options& options,
     space = std::move(fresh);
   }
   r.status = s;
-  if (space != nullptr) loop = space->loop;  // with any inserted vertices
-  r.stats.n = loop.size();
-  r.vertices = std::move(loop.vertices);
-  r.polygon = std::move(loop.ids);
+  // The loop with any inserted vertices; copied once, since a cached space
+  // is shared.
+  const PolygonLoop& solved = space != nullptr ? space->loop : loop;
+  r.stats.n = solved.size();
+  r.vertices = solved.vertices;
+  r.polygon = solved.ids;
   for (auto id = static_cast<int32_t>(problem.vertices.size());
        id < static_cast<int32_t>(r.vertices.size()); ++id) {
     r.inserted.push_back(id);
   }
   if (r.status.ok()) {
     Report(control, Stage::kTiling, 1);
-    r.metric_costs = EvaluateMetrics(r.vertices, loop.normals, r.triangles);
+    r.metric_costs = EvaluateMetrics(r.vertices, solved.normals, r.triangles);
     r.total_cost = WeightedTotal(weights, r.metric_costs);
     if (options.validate_output || r.space_used == SpaceUsed::kAll) {
       r.intersecting_pairs = CountIntersectingPairs(r.vertices, r.triangles);
