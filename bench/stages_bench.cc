@@ -148,10 +148,9 @@ void BM_Serialize(benchmark::State& state) {
     v1::Summary summary;
     wire::FillSummary(r, &summary);
     size_t bytes = summary.ByteSizeLong();
-    wire::ForEachMeshChunk(r, 0, 1 << 20, [&](v1::MeshChunk&& chunk) {
-      bytes += chunk.SerializeAsString().size();
-      return true;
-    });
+    wire::MeshChunker chunker(r, 0, 1 << 20);
+    v1::MeshChunk chunk;
+    while (chunker.Next(&chunk)) bytes += chunk.SerializeAsString().size();
     benchmark::DoNotOptimize(bytes);
   }
 }

@@ -5,103 +5,145 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <limits>
 #include <thread>
 
 namespace dot::server {
+namespace {
+
+template <typename T>
+void Add(CLI::App& app, const std::string& name, T* value,
+         const std::string& env, const std::string& help) {
+  app.add_option(name, *value, help)->envname(env)->capture_default_str();
+}
+
+// A size flag in units of 2^shift bytes (MiB: 20, KiB: 10) bound to a field
+// in bytes.
+template <typename T>
+void AddSize(CLI::App& app, const std::string& name, int shift, T* bytes,
+             const std::string& env, const std::string& help) {
+  const int64_t max =
+      static_cast<int64_t>(std::numeric_limits<T>::max()) >> shift;
+  app.add_option_function<int64_t>(
+         name,
+         [bytes, shift](int64_t v) { *bytes = static_cast<T>(v << shift); },
+         help)
+      ->envname(env)
+      ->check(CLI::Range(int64_t{0}, max))
+      ->default_str(std::to_string(static_cast<int64_t>(*bytes) >> shift));
+}
+
+}  // namespace
 
 void AddServerFlags(CLI::App& app, ServerConfig* c) {
-  auto add = [&app](const std::string& name, auto* value,
-                    const std::string& env, const std::string& help) {
-    app.add_option(name, *value, help)->envname(env)->capture_default_str();
-  };
-  add("--listen", &c->listen, "DOT_LISTEN", "gRPC address to listen on");
-  add("--threads", &c->threads, "DOT_THREADS",
+  ServiceOptions& s = c->service;
+  Add(app, "--listen", &c->listen, "DOT_LISTEN", "gRPC address to listen on");
+  Add(app, "--threads", &c->pool.threads, "DOT_THREADS",
       "compute threads (0: number of cores)");
-  add("--queue-size", &c->queue_size, "DOT_QUEUE_SIZE",
+  Add(app, "--queue-size", &c->pool.queue_size, "DOT_QUEUE_SIZE",
       "requests that may wait for a compute thread; beyond it the server "
       "answers RESOURCE_EXHAUSTED");
-  add("--max-vertices", &c->max_vertices, "DOT_MAX_VERTICES",
+  Add(app, "--max-vertices", &s.max_vertices, "DOT_MAX_VERTICES",
       "largest polygon accepted");
-  add("--max-compute-ms", &c->max_compute_ms, "DOT_MAX_COMPUTE_MS",
+  Add(app, "--max-compute-ms", &s.max_compute_ms, "DOT_MAX_COMPUTE_MS",
       "compute time limit per request");
-  add("--memory-budget-mb", &c->memory_budget_mb, "DOT_MEMORY_BUDGET_MB",
-      "table memory limit per request");
-  add("--all-space-max-vertices", &c->all_space_max_vertices,
+  AddSize(app, "--memory-budget-mb", 20, &s.solve.memory_budget_bytes,
+          "DOT_MEMORY_BUDGET_MB",
+          "table memory limit per request (requests may ask for less)");
+  Add(app, "--all-space-max-vertices", &s.solve.all_space_max_vertices,
       "DOT_ALL_SPACE_MAX_VERTICES",
       "search space 'auto' falls back to all triangles up to this size");
-  app.add_option("--delaunay-backend", c->delaunay_backend,
-                 "3D Delaunay backend of requests that do not choose one")
+  app.add_option_function<std::string>(
+         "--delaunay-backend",
+         [&s](const std::string& name) {
+           ParseDelaunayBackend(name, &s.solve.delaunay);
+         },
+         "3D Delaunay backend of requests that do not choose one")
       ->envname("DOT_DELAUNAY_BACKEND")
       ->check(CLI::IsMember({"cgal", "tetgen"}))
-      ->capture_default_str();
-  add("--cache-mb", &c->cache_mb, "DOT_CACHE_MB",
-      "memory for recently used search spaces, so re-solving a polygon with "
-      "new weights runs only the dynamic program (0: no cache)");
-  add("--malloc-keep-mb", &c->malloc_keep_mb, "DOT_MALLOC_KEEP_MB",
-      "freed memory the allocator keeps for the next requests instead of "
-      "returning it to the kernel (at most 1024; 0: glibc's defaults)");
-  add("--inline-max-vertices", &c->inline_max_vertices,
+      ->default_str(std::string(DelaunayBackendName(s.solve.delaunay)));
+  AddSize(app, "--cache-mb", 20, &c->cache_bytes, "DOT_CACHE_MB",
+          "memory for recently used search spaces, so re-solving a polygon "
+          "with new weights runs only the dynamic program (0: no cache)");
+  AddSize(app, "--malloc-keep-mb", 20, &c->malloc_keep_bytes,
+          "DOT_MALLOC_KEEP_MB",
+          "freed memory the allocator keeps for the next requests instead "
+          "of returning it to the kernel (at most 1024; 0: glibc's "
+          "defaults)");
+  Add(app, "--inline-max-vertices", &s.inline_max_vertices,
       "DOT_INLINE_MAX_VERTICES",
-      "Triangulate calls up to this many vertices run on the RPC thread when "
-      "a compute slot is free, saving two thread handoffs (0: never)");
-  add("--delaunay-helpers", &c->delaunay_helpers, "DOT_DELAUNAY_HELPERS",
+      "Triangulate calls over the Delaunay space up to this many vertices "
+      "run on the RPC thread when a compute slot is free, saving a thread "
+      "handoff (0: never)");
+  Add(app, "--delaunay-helpers", &c->helpers.count, "DOT_DELAUNAY_HELPERS",
       "TetGen helper processes (-1: one per thread, 0: in-process, "
       "serialized)");
-  add("--helper-path", &c->helper_path, "DOT_HELPER_PATH",
+  Add(app, "--helper-path", &c->helpers.executable, "DOT_HELPER_PATH",
       "dot-delaunay-helper binary (default: next to dot-server)");
-  add("--helper-memory-mb", &c->helper_memory_mb, "DOT_HELPER_MEMORY_MB",
-      "address-space limit of each helper process");
-  add("--metrics-port", &c->metrics_port, "DOT_METRICS_PORT",
+  AddSize(app, "--helper-memory-mb", 20, &c->helpers.memory_limit_bytes,
+          "DOT_HELPER_MEMORY_MB", "address-space limit of each helper process");
+  Add(app, "--metrics-port", &c->metrics.port, "DOT_METRICS_PORT",
       "Prometheus /metrics HTTP port (0: off)");
-  add("--metrics-bind", &c->metrics_bind, "DOT_METRICS_BIND",
+  Add(app, "--metrics-bind", &c->metrics.bind, "DOT_METRICS_BIND",
       "address the metrics endpoint binds");
-  add("--tls-cert", &c->tls_cert, "DOT_TLS_CERT",
+  Add(app, "--tls-cert", &c->tls.cert, "DOT_TLS_CERT",
       "PEM server certificate (enables TLS)");
-  add("--tls-key", &c->tls_key, "DOT_TLS_KEY", "PEM server private key");
-  add("--tls-client-ca", &c->tls_client_ca, "DOT_TLS_CLIENT_CA",
+  Add(app, "--tls-key", &c->tls.key, "DOT_TLS_KEY", "PEM server private key");
+  Add(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
       "PEM CA bundle; when set, clients must present a certificate it "
       "signed (mutual TLS)");
-  add("--drain-seconds", &c->drain_seconds, "DOT_DRAIN_SECONDS",
+  Add(app, "--drain-seconds", &c->drain_seconds, "DOT_DRAIN_SECONDS",
       "on SIGTERM, time in-flight requests get to finish before they are "
       "cancelled");
-  add("--max-message-mb", &c->max_message_mb, "DOT_MAX_MESSAGE_MB",
-      "largest gRPC message accepted or sent");
-  add("--chunk-kb", &c->chunk_kb, "DOT_CHUNK_KB",
-      "approximate size of streamed mesh chunks");
-  add("--max-connection-age-s", &c->max_connection_age_s,
+  AddSize(app, "--max-message-mb", 20, &s.max_message_bytes,
+          "DOT_MAX_MESSAGE_MB", "largest gRPC message accepted or sent");
+  AddSize(app, "--chunk-kb", 10, &s.chunk_bytes, "DOT_CHUNK_KB",
+          "approximate size of streamed mesh chunks");
+  Add(app, "--max-connection-age-s", &c->max_connection_age_s,
       "DOT_MAX_CONNECTION_AGE_S",
       "close client connections after this long so load rebalances across "
       "replicas (0: never)");
-  add("--log-level", &c->log_level, "DOT_LOG_LEVEL",
+  Add(app, "--log-level", &c->log_level, "DOT_LOG_LEVEL",
       "trace, debug, info, warn, error or off");
-  add("--source-archive", &c->source_archive, "DOT_SOURCE_ARCHIVE",
+  Add(app, "--source-archive", &s.source_archive, "DOT_SOURCE_ARCHIVE",
       "tar.gz of this server's source, served by GetSource (AGPL-3.0 s. 13)");
-  add("--source-url", &c->source_url, "DOT_SOURCE_URL",
+  Add(app, "--source-url", &s.source_url, "DOT_SOURCE_URL",
       "where this server's source is published, reported by GetServerInfo");
 }
 
 std::string FinalizeConfig(ServerConfig* c) {
-  if (c->threads <= 0) {
-    c->threads =
+  if (c->pool.threads <= 0) {
+    c->pool.threads =
         static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   }
-  if (c->delaunay_helpers < 0) c->delaunay_helpers = c->threads;
-  if (c->helper_path.empty() && c->delaunay_helpers > 0) {
+  HelperOptions& h = c->helpers;
+  if (!TetgenAvailable()) {
+    h.count = 0;
+    if (c->service.solve.delaunay == DelaunayBackend::kTetgen) {
+      return "--delaunay-backend tetgen: this build has no TetGen "
+             "(DOT_WITH_TETGEN=OFF)";
+    }
+  }
+  if (h.count < 0) h.count = c->pool.threads;
+  if (h.executable.empty() && h.count > 0) {
     std::error_code ec;
     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    c->helper_path = (self.parent_path() / "dot-delaunay-helper").string();
+    h.executable = (self.parent_path() / "dot-delaunay-helper").string();
   }
-  if (c->delaunay_helpers > 0 && ::access(c->helper_path.c_str(), X_OK) != 0) {
-    return "Delaunay helper '" + c->helper_path +
+  if (h.count > 0 && ::access(h.executable.c_str(), X_OK) != 0) {
+    return "Delaunay helper '" + h.executable +
            "' is not executable; set --helper-path or --delaunay-helpers 0";
   }
-  if (c->queue_size < 0) return "--queue-size must be >= 0";
-  if (c->max_vertices < 3) return "--max-vertices must be >= 3";
-  if (c->max_compute_ms <= 0) return "--max-compute-ms must be > 0";
-  if (c->tls_cert.empty() != c->tls_key.empty()) {
+  const ServiceOptions& s = c->service;
+  if (c->pool.queue_size < 0) return "--queue-size must be >= 0";
+  if (s.max_vertices < 3) return "--max-vertices must be >= 3";
+  if (s.max_compute_ms <= 0) return "--max-compute-ms must be > 0";
+  if (s.chunk_bytes == 0) return "--chunk-kb must be > 0";
+  if (s.max_message_bytes <= 0) return "--max-message-mb must be > 0";
+  if (c->tls.cert.empty() != c->tls.key.empty()) {
     return "--tls-cert and --tls-key go together";
   }
-  if (!c->tls_client_ca.empty() && c->tls_cert.empty()) {
+  if (!c->tls.client_ca.empty() && c->tls.cert.empty()) {
     return "--tls-client-ca needs --tls-cert and --tls-key";
   }
   return "";

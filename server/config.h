@@ -1,11 +1,18 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// dot-server's configuration: every setting is a flag with an environment
-// variable fallback (DOT_*), listed with its default by --help.
+// dot-server's configuration: the option structs of its components, each
+// the one home of its settings and defaults. AddServerFlags binds every
+// flag (with a DOT_* environment fallback) straight to its field, so
+// `--help` shows the defaults the structs define and nothing is copied.
 #ifndef DOT_SERVER_CONFIG_H_
 #define DOT_SERVER_CONFIG_H_
 
 #include <cstdint>
 #include <string>
+
+#include "compute/compute_pool.h"
+#include "compute/delaunay_helpers.h"
+#include "rpc/service_options.h"
+#include "server_metrics.h"
 
 namespace CLI {
 class App;
@@ -13,36 +20,30 @@ class App;
 
 namespace dot::server {
 
+struct TlsOptions {
+  std::string cert, key;  // PEM; both or neither (then plaintext)
+  std::string client_ca;  // PEM; set: clients must present a certificate
+};
+
 struct ServerConfig {
   std::string listen = "0.0.0.0:50051";
-  int threads = 0;      // 0: number of cores
-  int queue_size = 64;  // requests waiting for a thread
-  int max_vertices = 1000000;
-  int max_compute_ms = 60000;
-  int64_t memory_budget_mb = 2048;        // per request, DP tables
-  int all_space_max_vertices = 40;        // auto fallback to 'all'
-  std::string delaunay_backend = "cgal";  // default of requests
-  int64_t cache_mb = 256;                 // search-space cache; 0: off
-  int64_t malloc_keep_mb = 512;   // freed memory kept for reuse; 0: glibc's
-  int inline_max_vertices = 500;  // run small calls on the RPC thread
-  int delaunay_helpers = -1;      // -1: one per thread; 0: in-process TetGen
-  std::string helper_path;        // default: next to the server binary
-  int64_t helper_memory_mb = 4096;
-  int metrics_port = 9090;  // 0: off
-  std::string metrics_bind = "0.0.0.0";
-  std::string tls_cert, tls_key, tls_client_ca;
+  ServiceOptions service;
+  ComputePoolOptions pool;
+  HelperOptions helpers;
+  MetricsOptions metrics;
+  TlsOptions tls;
+  int64_t cache_bytes = int64_t{256} << 20;  // search-space cache; 0: off
+  // Freed memory the allocator keeps for the next requests (at most 1 GiB);
+  // 0: glibc's defaults.
+  int64_t malloc_keep_bytes = int64_t{512} << 20;
   int drain_seconds = 20;
-  int max_message_mb = 16;
-  int chunk_kb = 1024;  // mesh chunk size
-  int max_connection_age_s = 300;
+  int max_connection_age_s = 300;  // 0: never recycle connections
   std::string log_level = "info";
-  std::string source_archive = "/usr/share/dot/dot-source.tar.gz";
-  std::string source_url;
 };
 
 void AddServerFlags(CLI::App& app, ServerConfig* config);
-// Fills derived defaults (threads, helper path); returns an error message or
-// "" when the configuration is usable.
+// Resolves derived defaults (threads, helper count and path) and checks the
+// whole; returns an error message, or "" when the configuration is usable.
 std::string FinalizeConfig(ServerConfig* config);
 
 }  // namespace dot::server

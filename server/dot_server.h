@@ -11,17 +11,19 @@
 #include <memory>
 #include <string>
 
-#include "compute_pool.h"
+#include "compute/compute_pool.h"
+#include "compute/delaunay_helpers.h"
 #include "config.h"
-#include "delaunay_helpers.h"
+#include "rpc/job.h"
+#include "rpc/triangulator_service.h"
 #include "server_metrics.h"
-#include "triangulator_service.h"
 
 namespace dot::server {
 
 class DotServer {
  public:
   // Null with `error` set when the configuration or a port is unusable.
+  // The server keeps its copy of `config`; its components refer to it.
   static std::unique_ptr<DotServer> Start(ServerConfig config,
                                           std::string* error);
   ~DotServer();
@@ -31,7 +33,7 @@ class DotServer {
   // given `grace` to finish, then cancelled; the gRPC server shut down.
   void Drain(std::chrono::milliseconds grace);
 
-  TriangulatorService& service() { return *service_; }
+  JobRunner& jobs() { return *jobs_; }
   ServerMetrics& metrics() { return *metrics_; }
   DelaunayHelperPool* helpers() { return helpers_.get(); }
 
@@ -42,6 +44,7 @@ class DotServer {
   std::unique_ptr<DelaunayHelperPool> helpers_;
   std::unique_ptr<ComputePool> pool_;
   std::unique_ptr<SpaceCache> cache_;
+  std::unique_ptr<JobRunner> jobs_;
   std::unique_ptr<TriangulatorService> service_;
   std::unique_ptr<grpc::Server> server_;
   int port_ = 0;

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       "environment variable shown."};
   dot::server::ServerConfig config;
   dot::server::AddServerFlags(app, &config);
+  app.set_version_flag("--version", "dot-server " DOT_VERSION);
   CLI11_PARSE(app, argc, argv);
 
   const auto level = spdlog::level::from_str(config.log_level);
@@ -33,9 +34,9 @@ int main(int argc, char** argv) {
   // its tables in again: a quarter of a 2,000-vertex request's time here.
   // Keeping up to --malloc-keep-mb of freed memory makes repeated solves
   // reuse warm pages.
-  if (config.malloc_keep_mb > 0) {
+  if (config.malloc_keep_bytes > 0) {
     const auto keep = static_cast<int>(
-        std::min<int64_t>(config.malloc_keep_mb << 20, int64_t{1} << 30));
+        std::min<int64_t>(config.malloc_keep_bytes, int64_t{1} << 30));
     mallopt(M_MMAP_THRESHOLD, keep / 2);
     mallopt(M_TRIM_THRESHOLD, keep);
   }

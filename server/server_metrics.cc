@@ -5,7 +5,7 @@
 
 namespace dot::server {
 
-ServerMetrics::ServerMetrics(const std::string& bind, int port)
+ServerMetrics::ServerMetrics(const MetricsOptions& options)
     : registry_(std::make_shared<prometheus::Registry>()) {
   requests_ = &prometheus::BuildCounter()
                    .Name("dot_requests_total")
@@ -38,9 +38,9 @@ ServerMetrics::ServerMetrics(const std::string& bind, int port)
   cache_misses_ = &lookups.Add({{"result", "miss"}});
   cache_bytes_ =
       gauge("dot_space_cache_bytes", "Memory held by the search-space cache");
-  if (port > 0) {
-    exposer_ = std::make_unique<prometheus::Exposer>(bind + ":" +
-                                                     std::to_string(port));
+  if (options.port > 0) {
+    exposer_ = std::make_unique<prometheus::Exposer>(
+        options.bind + ":" + std::to_string(options.port));
     exposer_->RegisterCollectable(registry_);
   }
 }

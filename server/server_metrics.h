@@ -17,10 +17,15 @@
 
 namespace dot::server {
 
+struct MetricsOptions {
+  int port = 9090;               // Prometheus /metrics over HTTP; 0: off
+  std::string bind = "0.0.0.0";  // address it listens on
+};
+
 class ServerMetrics {
  public:
-  // Exposes /metrics on bind:port unless port is 0.
-  ServerMetrics(const std::string& bind, int port);
+  // Exposes /metrics on bind:port unless port is 0; throws when it cannot.
+  explicit ServerMetrics(const MetricsOptions& options);
 
   void RequestDone(const std::string& rpc, const std::string& status,
                    double seconds);

@@ -20,11 +20,11 @@ namespace dot::testing {
 inline server::ServerConfig LoopbackConfig() {
   server::ServerConfig c;
   c.listen = "127.0.0.1:0";
-  c.threads = 2;
-  c.queue_size = 16;
-  c.metrics_port = 0;
-  c.helper_path = DOT_HELPER_PATH;
-  c.source_archive = "";
+  c.pool.threads = 2;
+  c.pool.queue_size = 16;
+  c.metrics.port = 0;
+  c.helpers.executable = DOT_HELPER_PATH;
+  c.service.source_archive = "";
   c.log_level = "warn";
   return c;
 }

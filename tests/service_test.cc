@@ -123,7 +123,7 @@ TEST(ServiceTest, ResolvesComeFromTheCacheAndSaySo) {
 
 TEST(ServiceTest, LargeResultArrivesWholeInSmallChunks) {
   auto config = testing::LoopbackConfig();
-  config.chunk_kb = 64;  // forces dozens of chunks
+  config.service.chunk_bytes = 64 << 10;  // forces dozens of chunks
   auto s = StartServer(config);
   // A client that accepts no message over 256 KiB still gets it all.
   grpc::ChannelArguments args;
@@ -225,8 +225,8 @@ TEST(ServiceTest, BatchAnswersOutOfOrderWithIdsAndIsolatesFailures) {
 
 TEST(ServiceTest, ErrorsAreStatusCodesNamingTheProblem) {
   auto config = testing::LoopbackConfig();
-  config.max_vertices = 1000;
-  config.memory_budget_mb = 1;
+  config.service.max_vertices = 1000;
+  config.service.solve.memory_budget_bytes = 1 << 20;
   auto s = StartServer(config);
   auto call = [&](const v1::TriangulateRequest& r) {
     return TriangulateRemote(*s.stub, r, Input(r), 30).status;
@@ -288,20 +288,21 @@ void ExpectCancelFreesTheWorker(const server::ServerConfig& config) {
 }
 
 TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
-  for (const char* backend : {"cgal", "tetgen"}) {
-    SCOPED_TRACE(backend);
+  for (DelaunayBackend backend :
+       {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
+    SCOPED_TRACE(DelaunayBackendName(backend));
     auto config = testing::LoopbackConfig();
-    config.threads = 1;
-    config.delaunay_helpers = 1;
-    config.delaunay_backend = backend;
+    config.pool.threads = 1;
+    config.helpers.count = 1;
+    config.service.solve.delaunay = backend;
     ExpectCancelFreesTheWorker(config);
   }
 }
 
 TEST(ServiceTest, OverloadIsRefusedAtOnce) {
   auto config = testing::LoopbackConfig();
-  config.threads = 1;
-  config.queue_size = 1;
+  config.pool.threads = 1;
+  config.pool.queue_size = 1;
   auto s = StartServer(config);
   auto slow =
       CurveRequest(Curve::kMoment, 1200, Weights(Metric::kSquaredDihedral));
@@ -371,9 +372,9 @@ TEST(ServiceTest, DrainCancelsWorkThatOutlivesTheGracePeriod) {
 
 TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
   auto config = testing::LoopbackConfig();
-  config.threads = 1;
-  config.delaunay_helpers = 1;
-  config.delaunay_backend = "tetgen";
+  config.pool.threads = 1;
+  config.helpers.count = 1;
+  config.service.solve.delaunay = DelaunayBackend::kTetgen;
   auto s = StartServer(config);
   const auto warm = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
   ASSERT_TRUE(TriangulateRemote(*s.stub, warm, Input(warm), 30).status.ok());
@@ -400,10 +401,10 @@ TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
   GTEST_SKIP() << "ASan builds cannot cap a helper's address space";
 #endif
   auto config = testing::LoopbackConfig();
-  config.threads = 1;
-  config.delaunay_helpers = 1;
-  config.delaunay_backend = "tetgen";
-  config.helper_memory_mb = 100;
+  config.pool.threads = 1;
+  config.helpers.count = 1;
+  config.service.solve.delaunay = DelaunayBackend::kTetgen;
+  config.helpers.memory_limit_bytes = int64_t{100} << 20;
   auto s = StartServer(config);
   // About 2 million tetrahedra: far more than 100 MiB inside TetGen.
   const auto big = CurveRequest(Curve::kMoment, 2000, Weights(Metric::kArea));
@@ -418,8 +419,8 @@ TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
 
 TEST(ServiceTest, ConcurrentResultsEqualSequentialOnes) {
   auto config = testing::LoopbackConfig();
-  config.threads = 4;
-  config.queue_size = 32;  // room for every request at once
+  config.pool.threads = 4;
+  config.pool.queue_size = 32;  // room for every request at once
   auto s = StartServer(config);
   std::vector<v1::TriangulateRequest> requests;
   for (int i = 0; i < 24; ++i) {
@@ -447,8 +448,8 @@ TEST(ServiceTest, ServerInfoAndSource) {
     out << std::string(600 * 1024, 'x');
   }
   auto config = testing::LoopbackConfig();
-  config.source_archive = archive;
-  config.source_url = "https://example.org/dot";
+  config.service.source_archive = archive;
+  config.service.source_url = "https://example.org/dot";
   auto s = StartServer(config);
   grpc::ClientContext c1;
   v1::ServerInfo info;

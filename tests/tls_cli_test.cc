@@ -61,8 +61,8 @@ grpc::Status CallOver(const client::ConnectionFlags& flags) {
 TEST(TlsTest, TlsAndMutualTls) {
   const fs::path d = MakeCertificates();
   auto config = testing::LoopbackConfig();
-  config.tls_cert = (d / "server.pem").string();
-  config.tls_key = (d / "server.key").string();
+  config.tls.cert = (d / "server.pem").string();
+  config.tls.key = (d / "server.key").string();
   {
     auto s = testing::StartServer(config);
     client::ConnectionFlags tls;
@@ -73,7 +73,7 @@ TEST(TlsTest, TlsAndMutualTls) {
     plain.server = s.address;
     EXPECT_EQ(CallOver(plain).error_code(), grpc::StatusCode::UNAVAILABLE);
   }
-  config.tls_client_ca = (d / "ca.pem").string();
+  config.tls.client_ca = (d / "ca.pem").string();
   auto s = testing::StartServer(config);
   client::ConnectionFlags mutual;
   mutual.server = s.address;

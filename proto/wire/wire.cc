@@ -169,37 +169,44 @@ void FillSummary(const Result& r, v1::Summary* s) {
   st->set_total_ms(r.stats.total_ms);
 }
 
-bool ForEachMeshChunk(const Result& r, size_t first_vertex, size_t max_bytes,
-                      const std::function<bool(v1::MeshChunk&&)>& emit) {
-  // Packed doubles cost 8 bytes, packed uint32 indices at most 5.
-  const size_t vertices_per_chunk = std::max<size_t>(1, max_bytes / 24);
-  const size_t triangles_per_chunk = std::max<size_t>(1, max_bytes / 15);
-  for (size_t v = first_vertex; v < r.vertices.size();
-       v += vertices_per_chunk) {
-    v1::MeshChunk chunk;
-    chunk.set_first_vertex(static_cast<uint32_t>(v));
-    chunk.set_first_triangle(0);
-    const size_t end = std::min(r.vertices.size(), v + vertices_per_chunk);
-    chunk.mutable_vertices()->Reserve(static_cast<int>(3 * (end - v)));
+// Packed doubles cost 8 bytes, packed uint32 indices at most 5.
+MeshChunker::MeshChunker(const Result& result, size_t first_vertex,
+                         size_t max_bytes)
+    : result_(&result),
+      next_vertex_(first_vertex),
+      vertices_per_chunk_(std::max<size_t>(1, max_bytes / 24)),
+      triangles_per_chunk_(std::max<size_t>(1, max_bytes / 15)) {}
+
+bool MeshChunker::Next(v1::MeshChunk* chunk) {
+  chunk->Clear();
+  const auto& vertices = result_->vertices;
+  const auto& triangles = result_->triangles;
+  if (next_vertex_ < vertices.size()) {
+    const size_t v = next_vertex_;
+    const size_t end = std::min(vertices.size(), v + vertices_per_chunk_);
+    chunk->set_first_vertex(static_cast<uint32_t>(v));
+    chunk->mutable_vertices()->Reserve(static_cast<int>(3 * (end - v)));
     for (size_t i = v; i < end; ++i) {
-      chunk.add_vertices(r.vertices[i].x);
-      chunk.add_vertices(r.vertices[i].y);
-      chunk.add_vertices(r.vertices[i].z);
+      chunk->add_vertices(vertices[i].x);
+      chunk->add_vertices(vertices[i].y);
+      chunk->add_vertices(vertices[i].z);
     }
-    if (!emit(std::move(chunk))) return false;
+    next_vertex_ = end;
+    return true;
   }
-  for (size_t t = 0; t < r.triangles.size(); t += triangles_per_chunk) {
-    v1::MeshChunk chunk;
-    chunk.set_first_vertex(static_cast<uint32_t>(r.vertices.size()));
-    chunk.set_first_triangle(static_cast<uint32_t>(t));
-    const size_t end = std::min(r.triangles.size(), t + triangles_per_chunk);
-    chunk.mutable_triangles()->Reserve(static_cast<int>(3 * (end - t)));
+  if (next_triangle_ < triangles.size()) {
+    const size_t t = next_triangle_;
+    const size_t end = std::min(triangles.size(), t + triangles_per_chunk_);
+    chunk->set_first_vertex(static_cast<uint32_t>(vertices.size()));
+    chunk->set_first_triangle(static_cast<uint32_t>(t));
+    chunk->mutable_triangles()->Reserve(static_cast<int>(3 * (end - t)));
     for (size_t i = t; i < end; ++i) {
-      for (int32_t v : r.triangles[i]) chunk.add_triangles(v);
+      for (int32_t v : triangles[i]) chunk->add_triangles(v);
     }
-    if (!emit(std::move(chunk))) return false;
+    next_triangle_ = end;
+    return true;
   }
-  return true;
+  return false;
 }
 
 Status MeshAssembler::Add(const v1::MeshChunk& chunk) {

@@ -33,11 +33,20 @@ v1::Stage ToWire(Stage s);
 
 void FillSummary(const Result& result, v1::Summary* summary);
 
-// Splits a result's mesh into chunks of at most about `max_bytes` each and
-// hands them to `emit` in order; returns false as soon as emit does.
-bool ForEachMeshChunk(const Result& result, size_t first_vertex,
-                      size_t max_bytes,
-                      const std::function<bool(v1::MeshChunk&&)>& emit);
+// Splits a result's mesh into chunks of at most about `max_bytes` each:
+// vertices from `first_vertex` on, then triangles. Made one at a time, so a
+// large mesh is never held twice. `result` must outlive the chunker.
+class MeshChunker {
+ public:
+  MeshChunker(const Result& result, size_t first_vertex, size_t max_bytes);
+  // Fills the next chunk; false once every chunk has been given.
+  bool Next(v1::MeshChunk* chunk);
+
+ private:
+  const Result* result_;  // a pointer: chunkers are movable
+  size_t next_vertex_, next_triangle_ = 0;
+  size_t vertices_per_chunk_, triangles_per_chunk_;
+};
 
 // Reassembles a mesh from chunks; the summary says how big it must be.
 class MeshAssembler {

@@ -27,15 +27,20 @@
 
 namespace dot::server {
 
-struct HelperConfig {
-  std::string executable;  // the dot-delaunay-helper binary
-  int count = 2;
+struct HelperOptions {
+  // Helper processes; -1: one per compute thread, 0: TetGen in-process
+  // (serialized) instead.
+  int count = -1;
+  // The dot-delaunay-helper binary; empty: next to the running binary.
+  std::string executable;
+  // Address-space limit of each helper (setrlimit).
   int64_t memory_limit_bytes = int64_t{4} << 30;
 };
 
 class DelaunayHelperPool {
  public:
-  explicit DelaunayHelperPool(HelperConfig config);
+  // `options` resolved: count > 0, executable set.
+  explicit DelaunayHelperPool(HelperOptions options);
   ~DelaunayHelperPool();  // kills the helpers
   DelaunayHelperPool(const DelaunayHelperPool&) = delete;
   DelaunayHelperPool& operator=(const DelaunayHelperPool&) = delete;
@@ -60,7 +65,7 @@ class DelaunayHelperPool {
                   Tetrahedralization* out, const std::atomic<bool>* cancel,
                   std::chrono::steady_clock::time_point deadline);
 
-  const HelperConfig config_;
+  const HelperOptions config_;
   mutable std::mutex mu_;
   std::condition_variable free_;
   std::vector<Helper> helpers_;

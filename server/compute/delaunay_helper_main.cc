@@ -8,7 +8,7 @@
 #include <cstring>
 #include <iostream>
 
-#include "delaunay_helpers.h"
+#include "compute/delaunay_helpers.h"
 
 // AddressSanitizer reserves terabytes of shadow address space, so an
 // RLIMIT_AS cap would make its every mmap fail: sanitizer builds run uncapped.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-#include "delaunay_helpers.h"
+#include "compute/delaunay_helpers.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -85,8 +85,8 @@ int RunDelaunayHelper(int in_fd, int out_fd) {
   }
 }
 
-DelaunayHelperPool::DelaunayHelperPool(HelperConfig config)
-    : config_(std::move(config)), helpers_(std::max(1, config_.count)) {
+DelaunayHelperPool::DelaunayHelperPool(HelperOptions options)
+    : config_(std::move(options)), helpers_(std::max(1, config_.count)) {
   // A helper that dies mid-request must surface as EPIPE, not kill us.
   ::signal(SIGPIPE, SIG_IGN);
 }

@@ -16,9 +16,15 @@
 
 namespace dot::server {
 
+struct ComputePoolOptions {
+  int threads = 0;      // compute threads; 0: one per core
+  int queue_size = 64;  // tasks that may wait for a thread
+};
+
 class ComputePool {
  public:
-  ComputePool(int threads, int queue_capacity);
+  // `options.threads` must be resolved (> 0) by the caller.
+  explicit ComputePool(const ComputePoolOptions& options);
   ~ComputePool();  // runs what is queued, then joins
   ComputePool(const ComputePool&) = delete;
   ComputePool& operator=(const ComputePool&) = delete;
@@ -31,6 +37,7 @@ class ComputePool {
   int queued() const;
   int busy() const;
   int threads() const { return static_cast<int>(workers_.size()); }
+  int capacity() const { return capacity_; }
 
  private:
   void Work();

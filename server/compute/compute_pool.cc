@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-#include "compute_pool.h"
+#include "compute/compute_pool.h"
 
 namespace dot::server {
 
-ComputePool::ComputePool(int threads, int queue_capacity)
-    : capacity_(queue_capacity) {
-  for (int i = 0; i < threads; ++i) workers_.emplace_back([this] { Work(); });
+ComputePool::ComputePool(const ComputePoolOptions& options)
+    : capacity_(options.queue_size) {
+  for (int i = 0; i < options.threads; ++i) {
+    workers_.emplace_back([this] { Work(); });
+  }
 }
 
 ComputePool::~ComputePool() {

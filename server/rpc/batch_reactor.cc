@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "rpc/batch_reactor.h"
+
+namespace dot::server {
+namespace {
+
+void SetError(const std::string& id, const grpc::Status& status,
+              v1::TriangulateResponse* message) {
+  message->Clear();
+  message->set_id(id);
+  message->mutable_error()->set_code(status.error_code());
+  message->mutable_error()->set_message(status.error_message());
+}
+
+}  // namespace
+
+BatchReactor::BatchReactor(JobRunner* runner,
+                           grpc::CallbackServerContext* context)
+    : runner_(runner),
+      context_(context),
+      window_(2 * static_cast<size_t>(runner->compute_threads()) + 2) {
+  Pump();
+}
+
+void BatchReactor::OnReadDone(bool ok) {
+  if (!ok) {  // the client half-closed, or the stream broke
+    std::lock_guard<std::mutex> lock(mu_);
+    reading_ = false;
+    reads_done_ = true;
+  } else {
+    // request_ is ours until reading_ is cleared.
+    Item item;
+    item.job = runner_->Admit(request_, context_->deadline(),
+                              "TriangulateBatch", &item.refused);
+    std::shared_ptr<Job> job = item.job;
+    bool start = false;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      reading_ = false;
+      if (item.refused.ok() && stopped_) {
+        item.refused = {grpc::StatusCode::CANCELLED, "cancelled by the client"};
+      }
+      if (item.refused.ok()) {
+        job->on_done = [this, job] { OnJobDone(job); };
+        running_.insert(job);
+        start = true;
+      } else {
+        outbox_.push_back(std::move(item));
+      }
+    }
+    if (start && !runner_->Start(job, false)) {
+      job->on_done = nullptr;  // it holds the job
+      std::lock_guard<std::mutex> lock(mu_);
+      running_.erase(job);
+      Item refused;
+      refused.job = job;
+      refused.refused = runner_->Overloaded();
+      outbox_.push_back(std::move(refused));
+    }
+  }
+  Pump();
+}
+
+void BatchReactor::OnJobDone(const std::shared_ptr<Job>& job) {
+  const ServiceOptions& o = runner_->options();
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    running_.erase(job);
+    Item item;
+    item.job = job;
+    item.response.emplace(job, o.chunk_bytes, o.max_compute_ms);
+    outbox_.push_back(std::move(item));
+  }
+  Pump();
+}
+
+void BatchReactor::OnWriteDone(bool ok) {
+  std::vector<Answer> answered;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    writing_ = false;
+    if (!ok) Stop({grpc::StatusCode::CANCELLED, "the client went away"});
+    if (current_ && (current_->written || !ok)) {
+      const grpc::Status status = !ok ? final_status_
+                                  : !current_->refused.ok()
+                                      ? current_->refused
+                                      : current_->response->status();
+      answered.emplace_back(current_->job, status);
+      current_.reset();
+    }
+  }
+  for (const Answer& a : answered) runner_->Answered(*a.first, a.second);
+  Pump();
+}
+
+void BatchReactor::OnCancel() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    Stop({grpc::StatusCode::CANCELLED, "cancelled by the client"});
+  }
+  Pump();
+}
+
+void BatchReactor::Stop(const grpc::Status& status) {
+  if (stopped_) return;
+  stopped_ = true;
+  final_status_ = status;
+  for (const auto& job : running_) job->cancel = true;
+}
+
+bool BatchReactor::NextMessage(std::vector<Answer>* answered) {
+  for (;;) {
+    if (!current_) {
+      if (outbox_.empty()) return false;
+      current_ = std::move(outbox_.front());
+      outbox_.pop_front();
+    }
+    Item& item = *current_;
+    if (stopped_) {  // nobody to write to
+      answered->emplace_back(item.job, final_status_);
+      current_.reset();
+      continue;
+    }
+    const grpc::Status& error =
+        !item.refused.ok() ? item.refused : item.response->status();
+    if (!error.ok()) {
+      SetError(item.job->id, error, &message_);
+      item.written = true;
+      return true;
+    }
+    item.response->Next(&message_);
+    item.written = item.response->done();
+    return true;
+  }
+}
+
+void BatchReactor::Pump() {
+  bool start_read = false, start_write = false, finish = false;
+  std::vector<Answer> answered;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (finished_) return;
+    const size_t pending =
+        running_.size() + outbox_.size() + (current_ ? 1 : 0);
+    if (!reading_ && !reads_done_ && !stopped_ && pending < window_) {
+      reading_ = start_read = true;
+    }
+    if (!writing_ && NextMessage(&answered)) writing_ = start_write = true;
+    if (!reading_ && !writing_ && running_.empty() && outbox_.empty() &&
+        !current_ && (reads_done_ || stopped_)) {
+      finished_ = finish = true;
+    }
+  }
+  for (const Answer& a : answered) runner_->Answered(*a.first, a.second);
+  if (start_read) StartRead(&request_);
+  if (start_write) StartWrite(&message_);
+  // The last act: OnDone, which deletes this, may follow at once.
+  if (finish) Finish(final_status_);
+}
+
+void BatchReactor::OnDone() {
+  delete this;  // gRPC's callback API: a reactor owns itself until OnDone
+}
+
+}  // namespace dot::server

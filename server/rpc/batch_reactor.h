@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// TriangulateBatch: many polygons over one bidirectional stream, solved
+// concurrently, each answer written as soon as it is ready (tagged with its
+// request id); a bad polygon gets an Error message and fails alone.
+//
+// At most `window` polygons of a stream are admitted and not yet answered;
+// the reactor reads the next request only when one is answered, so HTTP/2
+// flow control pushes back on a fast sender and memory stays bounded. An
+// idle stream costs this object and nothing else: no thread waits on it.
+#ifndef DOT_SERVER_RPC_BATCH_REACTOR_H_
+#define DOT_SERVER_RPC_BATCH_REACTOR_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "dot/v1/triangulation.pb.h"
+#include "rpc/job.h"
+#include "rpc/job_response.h"
+
+namespace dot::server {
+
+class BatchReactor final
+    : public grpc::ServerBidiReactor<v1::TriangulateRequest,
+                                     v1::TriangulateResponse> {
+ public:
+  BatchReactor(JobRunner* runner, grpc::CallbackServerContext* context);
+
+  void OnReadDone(bool ok) override;
+  void OnWriteDone(bool ok) override;
+  void OnCancel() override;
+  void OnDone() override;
+
+ private:
+  // One admitted request on its way out: a refusal, or a job that runs
+  // and then streams its response.
+  struct Item {
+    std::shared_ptr<Job> job;
+    grpc::Status refused;                 // not OK: refused at admission
+    std::optional<JobResponse> response;  // set once the job has run
+    bool written = false;                 // its last message was written
+  };
+  using Answer = std::pair<std::shared_ptr<Job>, grpc::Status>;
+
+  void OnJobDone(const std::shared_ptr<Job>& job);
+  // Starts whatever can start now (a read, a write) or finishes the RPC.
+  // Every reaction ends by calling it; the decisions are taken under mu_
+  // and acted on after it is released.
+  void Pump();
+  // Under mu_: fills message_ with the next message to write; false when
+  // nothing is ready. Items dropped after a cancel go to `answered`.
+  bool NextMessage(std::vector<Answer>* answered);
+  void Stop(const grpc::Status& status);  // under mu_: cancel or broken
+
+  JobRunner* const runner_;
+  grpc::CallbackServerContext* const context_;
+  const size_t window_;
+
+  std::mutex mu_;
+  bool reading_ = false, reads_done_ = false;
+  bool writing_ = false, finished_ = false;
+  bool stopped_ = false;  // cancelled, or a write failed
+  grpc::Status final_status_;
+  std::set<std::shared_ptr<Job>> running_;
+  std::deque<Item> outbox_;      // finished or refused, waiting to be written
+  std::optional<Item> current_;  // being written
+  v1::TriangulateRequest request_;
+  v1::TriangulateResponse message_;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_RPC_BATCH_REACTOR_H_

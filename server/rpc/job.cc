@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "rpc/job.h"
+
+#include <algorithm>
+#include <exception>
+
+#include "rpc/request_log.h"
+#include "wire/wire.h"
+
+namespace dot::server {
+namespace {
+
+double Ms(Clock::duration d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+
+// The job's deadline: the smallest of the server's limit, the request's
+// time budget and the client's RPC deadline.
+void SetDeadline(const ServiceOptions& o, uint32_t budget_ms,
+                 std::chrono::system_clock::time_point client_deadline,
+                 Job* job) {
+  const int64_t limit_ms = budget_ms > 0
+                               ? std::min<int64_t>(budget_ms, o.max_compute_ms)
+                               : o.max_compute_ms;
+  job->deadline = job->arrived + std::chrono::milliseconds(limit_ms);
+  job->deadline_is_limit = true;
+  if (client_deadline == std::chrono::system_clock::time_point::max()) return;
+  const auto left = client_deadline - std::chrono::system_clock::now();
+  const auto steady =
+      job->arrived + std::chrono::duration_cast<Clock::duration>(left);
+  if (steady < job->deadline) {
+    job->deadline = steady;
+    job->deadline_is_limit = false;
+  }
+}
+
+}  // namespace
+
+JobRunner::JobRunner(const ServiceOptions& options, ComputePool* pool,
+                     DelaunayHelperPool* helpers, SpaceCache* cache,
+                     ServerMetrics* metrics)
+    : options_(options),
+      pool_(pool),
+      helpers_(helpers),
+      cache_(cache),
+      metrics_(metrics) {}
+
+std::shared_ptr<Job> JobRunner::Admit(
+    const v1::TriangulateRequest& request,
+    std::chrono::system_clock::time_point client_deadline, const char* rpc,
+    grpc::Status* error) {
+  auto job = std::make_shared<Job>();
+  *error = grpc::Status::OK;
+  job->rpc = rpc;
+  job->id = request.id();
+  job->arrived = Clock::now();
+  job->wire = request.options();
+  if (draining_) {
+    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          "server is shutting down; retry on another replica");
+    return job;
+  }
+  if (request.id().size() > kMaxRequestIdBytes) {
+    job->id.clear();
+    *error =
+        grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                     "request id has " + std::to_string(request.id().size()) +
+                         " bytes; at most " +
+                         std::to_string(kMaxRequestIdBytes) + " allowed");
+    return job;
+  }
+  job->options = options_.solve;
+  const Status shape =
+      wire::ProblemFromRequest(request, &job->problem, &job->options);
+  if (!shape.ok()) {
+    *error = wire::ToGrpcStatus(shape);
+    return job;
+  }
+  const size_t n = job->problem.vertices.size();
+  if (n > static_cast<size_t>(options_.max_vertices)) {
+    *error = grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                          "polygon has " + std::to_string(n) +
+                              " vertices; this server accepts at most " +
+                              std::to_string(options_.max_vertices));
+    return job;
+  }
+  const uint64_t asked = request.options().memory_budget_bytes();
+  const auto cap = static_cast<uint64_t>(options_.solve.memory_budget_bytes);
+  job->options.memory_budget_bytes =
+      static_cast<int64_t>(asked > 0 ? std::min(asked, cap) : cap);
+  job->options.all_space_max_vertices = options_.solve.all_space_max_vertices;
+  SetDeadline(options_, request.options().time_budget_ms(), client_deadline,
+              job.get());
+  Track(job.get());
+  return job;
+}
+
+void JobRunner::Track(Job* job) {
+  std::lock_guard<std::mutex> lock(jobs_mu_);
+  jobs_.insert(job);
+  ++inflight_;
+  metrics_->inflight().Set(inflight_);
+}
+
+void JobRunner::Untrack(const Job* job) {
+  std::lock_guard<std::mutex> lock(jobs_mu_);
+  if (jobs_.erase(const_cast<Job*>(job)) > 0) --inflight_;
+  metrics_->inflight().Set(inflight_);
+}
+
+bool JobRunner::Start(const std::shared_ptr<Job>& job, bool may_run_here) {
+  if (may_run_here && pool_->TryRunHere([this, &job] { Run(*job); })) {
+    return true;
+  }
+  const bool queued = pool_->TrySubmit([this, job] { Run(*job); });
+  metrics_->queue_depth().Set(pool_->queued());
+  return queued;
+}
+
+grpc::Status JobRunner::Overloaded() const {
+  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+          "server at capacity: " + std::to_string(pool_->capacity()) +
+              " requests already queued; retry later"};
+}
+
+void JobRunner::Run(Job& job) {
+  job.started = Clock::now();
+  metrics_->queue_depth().Set(pool_->queued());
+  metrics_->busy_threads().Set(pool_->busy());
+  Result result;
+  if (job.cancel) {
+    result.status =
+        MakeStatus(StatusCode::kCancelled, "cancelled while queued");
+  } else if (job.started >= job.deadline) {
+    result.status = MakeStatus(StatusCode::kDeadlineExceeded,
+                               "deadline passed in the queue");
+  } else {
+    Control control;
+    control.cancel = &job.cancel;
+    control.deadline = job.deadline;
+    if (job.on_progress) {
+      control.progress = [&job](Stage stage, double fraction) {
+        v1::Progress p;
+        p.set_stage(wire::ToWire(stage));
+        p.set_fraction(fraction);
+        p.set_elapsed_ms(Ms(Clock::now() - job.arrived));
+        job.on_progress(p);
+      };
+    }
+    if (helpers_ != nullptr) {
+      control.tetrahedralize = [this, &job](const std::vector<Vec3>& points,
+                                            Tetrahedralization* out) {
+        const Status s =
+            helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline);
+        metrics_->helper_starts().Set(static_cast<double>(helpers_->starts()));
+        return s;
+      };
+    }
+    if (!job.wire.no_cache()) control.space_cache = cache_;
+    try {
+      result = dot::Triangulate(job.problem, job.options, control);
+      // Counted when the request got as far as a search space.
+      if (control.space_cache != nullptr &&
+          result.space_used != SpaceUsed::kNone) {
+        metrics_->CacheLookup(result.stats.cache_hit,
+                              control.space_cache->counters());
+      }
+    } catch (const std::exception& e) {  // bad_alloc above all
+      result = {};
+      result.status =
+          MakeStatus(StatusCode::kResourceExhausted,
+                     std::string("computation failed: ") + e.what());
+    }
+  }
+  job.result = std::move(result);
+  job.finished = Clock::now();
+  job.ran = true;
+  // The slot is released after this returns; count it free already, so the
+  // gauge does not stay up when this was the last job.
+  metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
+  // Moved out first: a callback may hold the job, and must not outlive it.
+  std::function<void()> done = std::move(job.on_done);
+  done();
+}
+
+void JobRunner::Answered(const Job& job, const grpc::Status& status) {
+  Untrack(&job);
+  LogRequest(job, status, metrics_);
+}
+
+void JobRunner::CancelAllForDrain() {
+  std::lock_guard<std::mutex> lock(jobs_mu_);
+  for (Job* job : jobs_) {
+    job->drained = true;
+    job->cancel = true;
+  }
+}
+
+}  // namespace dot::server

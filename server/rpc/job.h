@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// One polygon's life in the service, shared by every RPC that solves
+// polygons: admission (drain, shape, limits, deadline), a run on the
+// compute pool or inline, and the completion callback that hands the result
+// back to the RPC's reactor. A reactor answers its job only after the job's
+// on_done has run, so a job never outlives the reactor it calls.
+#ifndef DOT_SERVER_RPC_JOB_H_
+#define DOT_SERVER_RPC_JOB_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+
+#include "compute/compute_pool.h"
+#include "compute/delaunay_helpers.h"
+#include "dot/space_cache.h"
+#include "dot/triangulate.h"
+#include "dot/v1/triangulation.pb.h"
+#include "rpc/service_options.h"
+#include "server_metrics.h"
+
+namespace dot::server {
+
+using Clock = std::chrono::steady_clock;
+
+// Request ids are echoed in every response and logged: keep them short.
+inline constexpr size_t kMaxRequestIdBytes = 256;
+
+struct Job {
+  std::string rpc, id;
+  Problem problem;
+  Options options;
+  v1::Options wire;
+  Clock::time_point arrived, started, finished, deadline;
+  bool deadline_is_limit = false;  // the server's limit, not the client's
+  std::atomic<bool> cancel{false};
+  std::atomic<bool> drained{false};  // cancelled by the server's drain
+
+  // Written by the computing thread before on_done; read after it.
+  bool ran = false;
+  Result result;
+
+  // Both run on the computing thread. on_done is the job's last act.
+  std::function<void(const v1::Progress&)> on_progress;
+  std::function<void()> on_done;
+};
+
+class JobRunner {
+ public:
+  // `helpers` null: TetGen in-process; `cache` null: no search-space cache.
+  JobRunner(const ServiceOptions& options, ComputePool* pool,
+            DelaunayHelperPool* helpers, SpaceCache* cache,
+            ServerMetrics* metrics);
+
+  // The job for `request`. When `error` is not OK the job was refused
+  // (draining, malformed, over a limit) and must not be started; it is
+  // still answered (Answered) so the refusal is counted and logged.
+  // `deadline` is the client's RPC deadline.
+  std::shared_ptr<Job> Admit(const v1::TriangulateRequest& request,
+                             std::chrono::system_clock::time_point deadline,
+                             const char* rpc, grpc::Status* error);
+
+  // Runs the job: inline on this thread when `may_run_here` and a compute
+  // slot is free (on_done has then run when this returns), else queued.
+  // False when the queue is full: the job never runs, on_done is not called.
+  bool Start(const std::shared_ptr<Job>& job, bool may_run_here);
+  // The status of a Start that returned false.
+  grpc::Status Overloaded() const;
+
+  // Counts a job's RPC (or batch item) answered, exactly once per Admit:
+  // metrics and one log line.
+  void Answered(const Job& job, const grpc::Status& status);
+
+  // New jobs are refused with UNAVAILABLE from now on.
+  void StartDraining() { draining_ = true; }
+  // Cancels every admitted job; their RPCs answer UNAVAILABLE.
+  void CancelAllForDrain();
+  int inflight() const { return inflight_; }
+
+  int compute_threads() const { return pool_->threads(); }
+  int queue_capacity() const { return pool_->capacity(); }
+  const ServiceOptions& options() const { return options_; }
+
+ private:
+  void Run(Job& job);
+  void Track(Job* job);
+  void Untrack(const Job* job);
+
+  const ServiceOptions& options_;
+  ComputePool* pool_;
+  DelaunayHelperPool* helpers_;
+  SpaceCache* cache_;
+  ServerMetrics* metrics_;
+  std::atomic<bool> draining_{false};
+  std::atomic<int> inflight_{0};
+  std::mutex jobs_mu_;
+  std::set<Job*> jobs_;  // admitted and not yet answered
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_RPC_JOB_H_

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "rpc/job_response.h"
+
+namespace dot::server {
+namespace {
+
+double Ms(Clock::duration d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+
+grpc::Status StatusOf(const Job& job, int max_compute_ms) {
+  const Status& s = job.result.status;
+  if (s.code == StatusCode::kCancelled) {
+    if (job.drained) {
+      return {grpc::StatusCode::UNAVAILABLE,
+              "server is shutting down; retry on another replica"};
+    }
+    return {grpc::StatusCode::CANCELLED, "cancelled by the client"};
+  }
+  if (s.code == StatusCode::kDeadlineExceeded) {
+    if (!job.deadline_is_limit) {
+      return {grpc::StatusCode::DEADLINE_EXCEEDED, s.message};
+    }
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "compute time limit exceeded (" + s.message +
+                "); raise options.time_budget_ms up to the server's " +
+                std::to_string(max_compute_ms) + " ms"};
+  }
+  if (s.code != StatusCode::kOk && s.code != StatusCode::kNoTriangulation) {
+    return wire::ToGrpcStatus(s);
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace
+
+JobResponse::JobResponse(std::shared_ptr<const Job> job, size_t chunk_bytes,
+                         int max_compute_ms)
+    : job_(std::move(job)),
+      status_(StatusOf(*job_, max_compute_ms)),
+      chunks_(
+          job_->result,
+          job_->wire.omit_input_vertices() ? job_->problem.vertices.size() : 0,
+          chunk_bytes) {
+  done_ = !status_.ok();
+}
+
+bool JobResponse::Next(v1::TriangulateResponse* message) {
+  if (done_) return false;
+  message->Clear();
+  message->set_id(job_->id);
+  if (chunks_.Next(message->mutable_mesh())) return true;
+  v1::Summary* summary = message->mutable_summary();
+  wire::FillSummary(job_->result, summary);
+  summary->set_queue_ms(Ms(job_->started - job_->arrived));
+  summary->set_compute_ms(Ms(job_->finished - job_->started));
+  done_ = true;
+  return true;
+}
+
+}  // namespace dot::server

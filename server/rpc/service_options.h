@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Configuration of the dot.v1.Triangulator service: the one home of every
+// setting the RPC layer reads. dot-server's flags write into these fields
+// (server/config.cc); the defaults here are the documented ones.
+#ifndef DOT_SERVER_RPC_SERVICE_OPTIONS_H_
+#define DOT_SERVER_RPC_SERVICE_OPTIONS_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "dot/triangulate.h"
+
+namespace dot::server {
+
+struct ServiceOptions {
+  // Largest polygon accepted.
+  int max_vertices = 1000000;
+  // Compute time per request; a request's time_budget_ms and the client's
+  // deadline can only shorten it.
+  int max_compute_ms = 60000;
+  // The core options every request starts from. A request may choose its
+  // search space, backend and protection, and lower (never raise)
+  // `memory_budget_bytes`; `all_space_max_vertices` is the server's alone.
+  Options solve;
+  // Approximate size of each streamed mesh chunk.
+  size_t chunk_bytes = size_t{1} << 20;
+  // Largest gRPC message received or sent (reported by GetServerInfo).
+  int max_message_bytes = 16 << 20;
+  // Triangulate calls over the Delaunay space up to this many vertices run
+  // on the RPC's own thread when a compute slot is free: no handoff. Such a
+  // run cannot see a cancel before it ends (gRPC delivers OnCancel only
+  // after the handler returns), so keep it small. 0: never.
+  int inline_max_vertices = 500;
+  // What GetSource serves and GetServerInfo points to (AGPL-3.0 s. 13).
+  std::string source_archive = "/usr/share/dot/dot-source.tar.gz";
+  std::string source_url;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_RPC_SERVICE_OPTIONS_H_

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "rpc/triangulate_reactor.h"
+
+namespace dot::server {
+
+TriangulateReactor::TriangulateReactor(JobRunner* runner,
+                                       grpc::CallbackServerContext* context,
+                                       const v1::TriangulateRequest& request)
+    : runner_(runner) {
+  grpc::Status refused;
+  job_ = runner_->Admit(request, context->deadline(), "Triangulate", &refused);
+  if (!refused.ok()) {
+    FinishWith(refused);
+    return;
+  }
+  const auto interval_ms = job_->wire.progress_interval_ms();
+  if (interval_ms > 0) {
+    job_->on_progress = [this](const v1::Progress& p) { OnProgress(p); };
+  }
+  job_->on_done = [this] { OnJobDone(); };
+  // Small Delaunay-space calls without progress skip the handoff to a
+  // worker; 'all' can be slow at any size, so it always goes to the pool.
+  const ServiceOptions& o = runner_->options();
+  const bool small = interval_ms == 0 &&
+                     job_->options.space != SearchSpace::kAll &&
+                     job_->problem.vertices.size() <=
+                         static_cast<size_t>(o.inline_max_vertices);
+  if (!runner_->Start(job_, small)) FinishWith(runner_->Overloaded());
+}
+
+void TriangulateReactor::OnProgress(const v1::Progress& progress) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    const auto now = Clock::now();
+    const auto interval =
+        std::chrono::milliseconds(job_->wire.progress_interval_ms());
+    if (writing_ || job_done_ || broken_ || now - last_progress_ < interval) {
+      return;  // the next report comes within ~50 ms
+    }
+    last_progress_ = now;
+    writing_ = true;
+    message_.Clear();
+    message_.set_id(job_->id);
+    *message_.mutable_progress() = progress;
+  }
+  StartWrite(&message_);
+}
+
+void TriangulateReactor::OnJobDone() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    job_done_ = true;
+    if (writing_) return;  // OnWriteDone carries on
+    writing_ = true;
+  }
+  WriteNext();
+}
+
+void TriangulateReactor::OnWriteDone(bool ok) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (!ok) {
+      broken_ = true;
+      job_->cancel = true;
+    }
+    if (!job_done_) {  // a progress report; the job carries on
+      writing_ = false;
+      return;
+    }
+  }
+  WriteNext();
+}
+
+void TriangulateReactor::WriteNext() {
+  bool broken;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    broken = broken_;
+  }
+  if (broken) {
+    FinishWith({grpc::StatusCode::CANCELLED, "the client went away"});
+    return;
+  }
+  if (!response_) {
+    const ServiceOptions& o = runner_->options();
+    response_.emplace(job_, o.chunk_bytes, o.max_compute_ms);
+  }
+  if (!response_->status().ok()) {
+    FinishWith(response_->status());
+    return;
+  }
+  response_->Next(&message_);
+  if (response_->done()) {
+    final_status_ = grpc::Status::OK;
+    StartWriteAndFinish(&message_, grpc::WriteOptions(), final_status_);
+  } else {
+    StartWrite(&message_);
+  }
+}
+
+void TriangulateReactor::FinishWith(const grpc::Status& status) {
+  final_status_ = status;
+  Finish(status);
+}
+
+void TriangulateReactor::OnCancel() {
+  if (job_) job_->cancel = true;
+}
+
+void TriangulateReactor::OnDone() {
+  runner_->Answered(*job_, final_status_);
+  delete this;  // gRPC's callback API: a reactor owns itself until OnDone
+}
+
+}  // namespace dot::server

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Triangulate: one polygon in, a stream out (progress, mesh chunks,
+// summary). The reactor admits the job and starts it; the job's completion
+// starts the writes; OnCancel sets the job's cancel flag. No thread waits:
+// every step is a reaction to the job or to gRPC.
+#ifndef DOT_SERVER_RPC_TRIANGULATE_REACTOR_H_
+#define DOT_SERVER_RPC_TRIANGULATE_REACTOR_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "dot/v1/triangulation.pb.h"
+#include "rpc/job.h"
+#include "rpc/job_response.h"
+
+namespace dot::server {
+
+class TriangulateReactor final
+    : public grpc::ServerWriteReactor<v1::TriangulateResponse> {
+ public:
+  TriangulateReactor(JobRunner* runner, grpc::CallbackServerContext* context,
+                     const v1::TriangulateRequest& request);
+
+  void OnWriteDone(bool ok) override;
+  void OnCancel() override;
+  void OnDone() override;
+
+ private:
+  // Called on the computing thread.
+  void OnProgress(const v1::Progress& progress);
+  void OnJobDone();
+  // Writes the next message of the answer, or finishes the RPC. Only ever
+  // called by whoever holds the (single) right to write.
+  void WriteNext();
+  void FinishWith(const grpc::Status& status);
+
+  JobRunner* const runner_;
+  std::shared_ptr<Job> job_;
+  grpc::Status final_status_;
+
+  std::mutex mu_;
+  bool writing_ = false;   // a write is in flight
+  bool job_done_ = false;  // on_done has run
+  bool broken_ = false;    // a write failed: the client is gone
+  Clock::time_point last_progress_{};
+
+  std::optional<JobResponse> response_;
+  v1::TriangulateResponse message_;  // the message being written
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_RPC_TRIANGULATE_REACTOR_H_

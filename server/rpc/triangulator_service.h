@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dot.v1.Triangulator on gRPC's callback API: each streaming RPC is a
+// reactor of its own (rpc/*_reactor.h) over the shared JobRunner; no thread
+// blocks on a call.
+#ifndef DOT_SERVER_RPC_TRIANGULATOR_SERVICE_H_
+#define DOT_SERVER_RPC_TRIANGULATOR_SERVICE_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include "dot/v1/triangulation.grpc.pb.h"
+#include "rpc/job.h"
+#include "rpc/service_options.h"
+
+namespace dot::server {
+
+class TriangulatorService final : public v1::Triangulator::CallbackService {
+ public:
+  // `cache` and `helpers` may be null (they only shape GetServerInfo here).
+  TriangulatorService(JobRunner* runner, const SpaceCache* cache,
+                      const DelaunayHelperPool* helpers);
+
+  grpc::ServerWriteReactor<v1::TriangulateResponse>* Triangulate(
+      grpc::CallbackServerContext* context,
+      const v1::TriangulateRequest* request) override;
+  grpc::ServerBidiReactor<v1::TriangulateRequest, v1::TriangulateResponse>*
+  TriangulateBatch(grpc::CallbackServerContext* context) override;
+  grpc::ServerUnaryReactor* GetServerInfo(
+      grpc::CallbackServerContext* context,
+      const v1::GetServerInfoRequest* request, v1::ServerInfo* info) override;
+  grpc::ServerWriteReactor<v1::SourceChunk>* GetSource(
+      grpc::CallbackServerContext* context,
+      const v1::GetSourceRequest* request) override;
+
+ private:
+  JobRunner* const runner_;
+  const SpaceCache* const cache_;
+  const DelaunayHelperPool* const helpers_;
+};
+
+}  // namespace dot::server
+
+#endif  // DOT_SERVER_RPC_TRIANGULATOR_SERVICE_H_
