@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <iostream>
 #include <set>
 #include <thread>
 
@@ -263,11 +265,10 @@ TEST(ServiceTest, ErrorsAreStatusCodesNamingTheProblem) {
 }
 
 // A long run cancelled by its client frees the only compute thread at once.
-void ExpectCancelFreesTheWorker(const server::ServerConfig& config) {
+void ExpectCancelFreesTheWorker(const server::ServerConfig& config,
+                                const v1::TriangulateRequest& long_request) {
   auto s = StartServer(config);
   grpc::ClientContext context;
-  auto long_request =
-      CurveRequest(Curve::kTwist, 1501, Weights(Metric::kSquaredDihedral));
   auto reader = s.stub->Triangulate(&context, long_request);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const auto cancelled_at = Clock::now();
@@ -295,8 +296,68 @@ TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
     config.pool.threads = 1;
     config.helpers.count = 1;
     config.service.solve.delaunay = backend;
-    ExpectCancelFreesTheWorker(config);
+    ExpectCancelFreesTheWorker(
+        config,
+        CurveRequest(Curve::kTwist, 1501, Weights(Metric::kSquaredDihedral)));
   }
+}
+
+// Calls small enough to run on the RPC thread cannot see a cancel until they
+// end, so the costly 'all' space (seconds at n = 300) is never run there.
+TEST(ServiceTest, SmallAllTrianglesCallIsStillCancellable) {
+  auto config = testing::LoopbackConfig();
+  config.pool.threads = 1;
+  ASSERT_GE(config.service.inline_max_vertices, 300);
+  auto request =
+      CurveRequest(Curve::kSpiral, 300, Weights(Metric::kSquaredDihedral));
+  request.mutable_options()->set_search_space(v1::SEARCH_SPACE_ALL);
+  ExpectCancelFreesTheWorker(config, request);
+}
+
+// Each open batch stream is a reactor object, not a thread: many idle
+// streams add no threads and little memory to the (in-process) server.
+TEST(ServiceTest, IdleBatchStreamsCostNoThreads) {
+  auto s = StartServer(testing::LoopbackConfig());
+  auto count_threads = [] {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                         std::filesystem::directory_iterator());
+  };
+  auto rss_mb = [] {
+    std::ifstream in("/proc/self/statm");
+    long pages_total = 0, pages_resident = 0;
+    in >> pages_total >> pages_resident;
+    return static_cast<double>(pages_resident) * ::sysconf(_SC_PAGESIZE) /
+           (1 << 20);
+  };
+  // Warm the connection (its threads start with the first call).
+  const auto quick = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
+  ASSERT_TRUE(TriangulateRemote(*s.stub, quick, Input(quick), 30).status.ok());
+  const auto threads_before = count_threads();
+  const double rss_before = rss_mb();
+  constexpr int kStreams = 1000;
+  std::vector<std::unique_ptr<grpc::ClientContext>> contexts;
+  std::vector<std::unique_ptr<grpc::ClientReaderWriter<
+      v1::TriangulateRequest, v1::TriangulateResponse>>>
+      streams;
+  for (int i = 0; i < kStreams; ++i) {
+    contexts.push_back(std::make_unique<grpc::ClientContext>());
+    streams.push_back(s.stub->TriangulateBatch(contexts.back().get()));
+  }
+  // Each stream still works: one polygon over the last one opened.
+  ASSERT_TRUE(streams.back()->Write(quick));
+  v1::TriangulateResponse msg;
+  bool summary = false;
+  while (!summary && streams.back()->Read(&msg)) summary = msg.has_summary();
+  EXPECT_TRUE(summary);
+  const auto threads_after = count_threads();
+  const double rss_after = rss_mb();
+  std::cout << kStreams << " idle batch streams: threads " << threads_before
+            << " -> " << threads_after << ", RSS " << rss_before << " -> "
+            << rss_after << " MiB (server and client together)\n";
+  EXPECT_LT(threads_after - threads_before, 16);
+  EXPECT_LT(rss_after - rss_before, 50);  // client and server together
+  for (auto& c : contexts) c->TryCancel();
+  for (auto& st : streams) st->Finish();
 }
 
 TEST(ServiceTest, OverloadIsRefusedAtOnce) {
@@ -367,7 +428,10 @@ TEST(ServiceTest, DrainCancelsWorkThatOutlivesTheGracePeriod) {
   const auto t0 = Clock::now();
   s.server->Drain(std::chrono::milliseconds(100));
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 3.0);
-  EXPECT_FALSE(in_flight.get().status.ok());
+  // UNAVAILABLE, not CANCELLED: clients retry it on another replica.
+  const grpc::Status status = in_flight.get().status;
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE)
+      << status.error_message();
 }
 
 TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
