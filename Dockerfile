@@ -8,7 +8,7 @@ RUN apt-get update \
  && apt-get install -y --no-install-recommends \
       cmake ninja-build g++ pkg-config \
       libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler \
-      libtet1.5-dev libcgal-dev libspdlog-dev libcli11-dev prometheus-cpp-dev \
+      libtet1.5-dev libcgal-dev libtbb-dev libspdlog-dev libcli11-dev prometheus-cpp-dev \
  && rm -rf /var/lib/apt/lists/*
 WORKDIR /src
 COPY . .
@@ -25,7 +25,7 @@ FROM debian:${DEBIAN}-slim
 RUN apt-get update \
  && apt-get install -y --no-install-recommends \
       libgrpc++1.51 libgrpc29 libprotobuf32 libabsl20220623 libre2-9 \
-      libc-ares2 libssl3 zlib1g libtet1.5 libgmp10 libspdlog1.10 libfmt9 \
+      libc-ares2 libssl3 zlib1g libtet1.5 libgmp10 libtbb12 libspdlog1.10 libfmt9 \
       libprometheus-cpp-core1.0 libprometheus-cpp-pull1.0 libcivetweb1 \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin dot
