@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
       "in-process with 'triangulate --local'.\n"
       "Exit codes: 0 ok, 1 a request failed, 2 usage, 3 server unreachable, "
       "4 some polygon has no triangulation."};
+  app.set_version_flag("--version", "dotctl " DOT_VERSION);
   app.require_subcommand(1);
   dot::client::Context ctx;
   dot::client::AddConnectionFlags(&app, &ctx.connection);

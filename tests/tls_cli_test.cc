@@ -169,6 +169,20 @@ TEST_F(CliTest, ExitCodes) {
       << bad.out;
 }
 
+TEST_F(CliTest, BothBinariesPrintTheirVersion) {
+  const CliRun dotctl = Dotctl("--version");
+  EXPECT_EQ(dotctl.code, 0);
+  EXPECT_EQ(dotctl.out.rfind("dotctl ", 0), 0u) << dotctl.out;
+  const std::string command = std::string(DOT_SERVER_PATH) + " --version 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char line[256] = {};
+  const bool read = std::fgets(line, sizeof line, pipe) != nullptr;
+  EXPECT_EQ(::pclose(pipe), 0);
+  ASSERT_TRUE(read);
+  EXPECT_EQ(std::string(line).rfind("dot-server ", 0), 0u) << line;
+}
+
 TEST_F(CliTest, BatchLoadInfoAndHelp) {
   fs::create_directories(dir_ / "in");
   for (int i = 0; i < 5; ++i) {
