@@ -78,10 +78,9 @@ Status TetgenTetrahedralize(const std::vector<Vec3>& points,
   // would then miss polygon edges for no geometric reason.
   const auto missing = std::find(used.begin(), used.end(), false);
   if (missing != used.end()) {
-    return MakeStatus(StatusCode::kInvalidArgument,
-                      "vertex " + std::to_string(missing - used.begin()) +
-                          " is so close to another vertex that TetGen merged "
-                          "them");
+    return InvalidArgument("vertex " + std::to_string(missing - used.begin()) +
+                           " is so close to another vertex that TetGen merged "
+                           "them");
   }
   return OkStatus();
 }

@@ -9,10 +9,6 @@
 namespace dot {
 namespace {
 
-Status Invalid(std::string m) {
-  return MakeStatus(StatusCode::kInvalidArgument, std::move(m));
-}
-
 std::string Extension(const std::string& path) {
   const auto dot = path.find_last_of('.');
   if (dot == std::string::npos) return "";
@@ -48,20 +44,20 @@ Status ReadPolygonText(std::istream& in, PolygonData* out) {
     while (s >> d) x.push_back(d);
     std::string rest;
     if (!s.eof() && (s.clear(), s >> rest)) {
-      return Invalid("line " + std::to_string(lineno) + ": '" + rest +
-                     "' is not a number");
+      return InvalidArgument("line " + std::to_string(lineno) + ": '" + rest +
+                             "' is not a number");
     }
     if (x.size() != 3 && x.size() != 6) {
-      return Invalid("line " + std::to_string(lineno) +
-                     ": expected 3 (x y z)"
-                     " or 6 (x y z nx ny nz) numbers, found " +
-                     std::to_string(x.size()));
+      return InvalidArgument("line " + std::to_string(lineno) +
+                             ": expected 3 (x y z)"
+                             " or 6 (x y z nx ny nz) numbers, found " +
+                             std::to_string(x.size()));
     }
     out->vertices.push_back({x[0], x[1], x[2]});
     if (x.size() == 6) out->normals.push_back({x[3], x[4], x[5]});
   }
   if (!out->normals.empty() && out->normals.size() != out->vertices.size()) {
-    return Invalid("some lines have normals and some do not");
+    return InvalidArgument("some lines have normals and some do not");
   }
   return OkStatus();
 }
@@ -78,22 +74,22 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
     if (tag == "v" || tag == "vn") {
       Vec3 p;
       if (!(s >> p.x >> p.y >> p.z)) {
-        return Invalid("line " + std::to_string(lineno) + ": bad '" + tag +
-                       "' line");
+        return InvalidArgument("line " + std::to_string(lineno) + ": bad '" +
+                               tag + "' line");
       }
       (tag == "v" ? v : vn).push_back(p);
     } else if (tag == "l") {
       if (!loop.empty()) {
-        return Invalid("line " + std::to_string(lineno) +
-                       ": only one 'l' polyline is supported");
+        return InvalidArgument("line " + std::to_string(lineno) +
+                               ": only one 'l' polyline is supported");
       }
       std::string tok;
       while (s >> tok) {
         int32_t idx;
         const long raw = std::strtol(tok.c_str(), nullptr, 10);
         if (!ObjIndex(raw, v.size(), &idx)) {
-          return Invalid("line " + std::to_string(lineno) + ": index '" + tok +
-                         "' is out of range");
+          return InvalidArgument("line " + std::to_string(lineno) +
+                                 ": index '" + tok + "' is out of range");
         }
         loop.push_back(idx);
       }
@@ -107,8 +103,8 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
   for (int32_t i : loop) out->vertices.push_back(v[i]);
   if (!vn.empty()) {
     if (vn.size() != v.size()) {
-      return Invalid(std::to_string(vn.size()) + " 'vn' normals for " +
-                     std::to_string(v.size()) + " vertices");
+      return InvalidArgument(std::to_string(vn.size()) + " 'vn' normals for " +
+                             std::to_string(v.size()) + " vertices");
     }
     for (int32_t i : loop) out->normals.push_back(vn[i]);
   }
@@ -117,7 +113,7 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
 
 Status ReadPolygonFile(const std::string& path, PolygonData* out) {
   std::ifstream in(path);
-  if (!in) return Invalid("cannot open polygon file '" + path + "'");
+  if (!in) return InvalidArgument("cannot open polygon file '" + path + "'");
   Status s = Extension(path) == "obj" ? ReadPolygonObj(in, out)
                                       : ReadPolygonText(in, out);
   if (!s.ok()) s.message = path + ": " + s.message;
@@ -126,7 +122,7 @@ Status ReadPolygonFile(const std::string& path, PolygonData* out) {
 
 Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
   std::ofstream out(path);
-  if (!out) return Invalid("cannot write '" + path + "'");
+  if (!out) return InvalidArgument("cannot write '" + path + "'");
   out.precision(17);
   for (size_t i = 0; i < polygon.vertices.size(); ++i) {
     const Vec3& p = polygon.vertices[i];
@@ -137,7 +133,7 @@ Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
     }
     out << '\n';
   }
-  return out ? OkStatus() : Invalid("failed writing '" + path + "'");
+  return out ? OkStatus() : InvalidArgument("failed writing '" + path + "'");
 }
 
 Status WriteMesh(std::ostream& out, const std::string& format,
@@ -165,26 +161,27 @@ Status WriteMesh(std::ostream& out, const std::string& format,
     for (const Triangle& t : mesh.triangles)
       out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
   } else {
-    return Invalid("unknown mesh format '" + format + "'; use obj, ply or off");
+    return InvalidArgument("unknown mesh format '" + format +
+                           "'; use obj, ply or off");
   }
-  return out ? OkStatus() : Invalid("failed writing the mesh");
+  return out ? OkStatus() : InvalidArgument("failed writing the mesh");
 }
 
 Status WriteMeshFile(const std::string& path, const MeshData& mesh) {
   const std::string ext = Extension(path);
   if (ext != "obj" && ext != "ply" && ext != "off") {
-    return Invalid("cannot tell the mesh format of '" + path +
-                   "'; name it .obj, .ply or .off");
+    return InvalidArgument("cannot tell the mesh format of '" + path +
+                           "'; name it .obj, .ply or .off");
   }
   std::ofstream out(path);
-  if (!out) return Invalid("cannot write '" + path + "'");
+  if (!out) return InvalidArgument("cannot write '" + path + "'");
   return WriteMesh(out, ext, mesh);
 }
 
 Status ReadMeshFile(const std::string& path, MeshData* out) {
   *out = {};
   std::ifstream in(path);
-  if (!in) return Invalid("cannot open mesh file '" + path + "'");
+  if (!in) return InvalidArgument("cannot open mesh file '" + path + "'");
   auto add_polygon = [out](const std::vector<int32_t>& f) {
     for (size_t k = 1; k + 1 < f.size(); ++k)
       out->triangles.push_back({f[0], f[k], f[k + 1]});
@@ -195,21 +192,22 @@ Status ReadMeshFile(const std::string& path, MeshData* out) {
     size_t nv = 0, nf = 0, ne = 0;
     in >> header;
     if (header != "OFF" || !(in >> nv >> nf >> ne)) {
-      return Invalid(path + ": not an OFF file");
+      return InvalidArgument(path + ": not an OFF file");
     }
     out->vertices.resize(nv);
     for (Vec3& p : out->vertices) {
-      if (!(in >> p.x >> p.y >> p.z)) return Invalid(path + ": truncated");
+      if (!(in >> p.x >> p.y >> p.z))
+        return InvalidArgument(path + ": truncated");
       std::string rest;
       std::getline(in, rest);  // skip colors
     }
     for (size_t i = 0; i < nf; ++i) {
       size_t k;
-      if (!(in >> k) || k < 3) return Invalid(path + ": bad face");
+      if (!(in >> k) || k < 3) return InvalidArgument(path + ": bad face");
       std::vector<int32_t> f(k);
       for (int32_t& v : f) {
         if (!(in >> v) || v < 0 || static_cast<size_t>(v) >= nv) {
-          return Invalid(path + ": bad face index");
+          return InvalidArgument(path + ": bad face index");
         }
       }
       std::string rest;
@@ -235,7 +233,7 @@ Status ReadMeshFile(const std::string& path, MeshData* out) {
           int32_t idx;
           if (!ObjIndex(std::strtol(tok.c_str(), nullptr, 10),
                         out->vertices.size(), &idx)) {
-            return Invalid(path + ": bad face index '" + tok + "'");
+            return InvalidArgument(path + ": bad face index '" + tok + "'");
           }
           f.push_back(idx);
         }
@@ -244,7 +242,7 @@ Status ReadMeshFile(const std::string& path, MeshData* out) {
     }
     return OkStatus();
   }
-  return Invalid("cannot read mesh '" + path + "': use .off or .obj");
+  return InvalidArgument("cannot read mesh '" + path + "': use .off or .obj");
 }
 
 }  // namespace dot

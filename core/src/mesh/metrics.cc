@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/edge_key.h"
+#include "mesh/edge_index.h"
 
 namespace dot {
 
@@ -59,30 +59,19 @@ MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
                              const std::vector<Triangle>& triangles) {
   MetricValues sum;
   std::vector<Vec3> unit(triangles.size());
-  // (undirected edge, triangle) pairs; equal keys are adjacent triangles.
-  std::vector<std::pair<uint64_t, int32_t>> edges;
-  edges.reserve(3 * triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
     const MetricValues m = PerTriangleMetrics(vertices, normals, triangles[i]);
     for (Metric k : kAllMetrics) sum[k] += m[k];
     unit[i] = UnitNormal(vertices, triangles[i]);
-    for (int j = 0; j < 3; ++j) {
-      edges.emplace_back(
-          UndirectedEdgeKey(triangles[i][j], triangles[i][(j + 1) % 3]),
-          static_cast<int32_t>(i));
-    }
   }
-  std::sort(edges.begin(), edges.end());
-  for (size_t i = 0; i + 1 < edges.size(); ++i) {
-    if (edges[i].first != edges[i + 1].first) continue;
+  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
     // Only manifold edges (exactly two triangles) have a dihedral angle.
-    if (i + 2 < edges.size() && edges[i + 2].first == edges[i].first) continue;
-    if (i > 0 && edges[i - 1].first == edges[i].first) continue;
+    if (edge.size() != 2) return;
     const double theta =
-        BendingAngle(unit[edges[i].second], unit[edges[i + 1].second]);
+        BendingAngle(unit[edge[0].triangle], unit[edge[1].triangle]);
     sum[Metric::kDihedral] += theta;
     sum[Metric::kSquaredDihedral] += theta * theta;
-  }
+  });
   return sum;
 }
 

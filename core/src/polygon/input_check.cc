@@ -8,6 +8,8 @@
 #include <tuple>
 #include <vector>
 
+#include "search_space/delaunay3d.h"
+
 namespace dot {
 
 std::string FormatVec(const Vec3& v) {
@@ -17,55 +19,50 @@ std::string FormatVec(const Vec3& v) {
   return s.str();
 }
 
-namespace {
-Status Invalid(std::string message) {
-  return MakeStatus(StatusCode::kInvalidArgument, std::move(message));
-}
-}  // namespace
-
 Status CheckProblem(const Problem& problem, const Options& options) {
   const auto& v = problem.vertices;
   const int n = static_cast<int>(v.size());
   if (n < 3) {
-    return Invalid("polygon has " + std::to_string(n) +
-                   " vertices; at least 3 are needed");
+    return InvalidArgument("polygon has " + std::to_string(n) +
+                           " vertices; at least 3 are needed");
   }
   for (int i = 0; i < n; ++i) {
     if (!IsFinite(v[i])) {
-      return Invalid("vertex " + std::to_string(i) +
-                     " has a non-finite coordinate " + FormatVec(v[i]));
+      return InvalidArgument("vertex " + std::to_string(i) +
+                             " has a non-finite coordinate " + FormatVec(v[i]));
     }
   }
   for (Metric m : kAllMetrics) {
     if (!std::isfinite(problem.weights[m])) {
-      return Invalid("weight of metric " + std::string(MetricName(m)) +
-                     " is not finite");
+      return InvalidArgument("weight of metric " + std::string(MetricName(m)) +
+                             " is not finite");
     }
   }
   if (!problem.normals.empty()) {
     if (problem.normals.size() != v.size()) {
-      return Invalid(std::to_string(problem.normals.size()) +
-                     " boundary normals given for " + std::to_string(n) +
-                     " vertices; give one per vertex or none");
+      return InvalidArgument(std::to_string(problem.normals.size()) +
+                             " boundary normals given for " +
+                             std::to_string(n) +
+                             " vertices; give one per vertex or none");
     }
     for (int i = 0; i < n; ++i) {
       const Vec3& nv = problem.normals[i];
       if (!IsFinite(nv) || Norm(nv) == 0) {
-        return Invalid("boundary normal " + std::to_string(i) + " " +
-                       FormatVec(nv) + " is zero or not finite");
+        return InvalidArgument("boundary normal " + std::to_string(i) + " " +
+                               FormatVec(nv) + " is zero or not finite");
       }
     }
   } else if (problem.weights[Metric::kNormalDeviation] != 0) {
-    return Invalid(
+    return InvalidArgument(
         "metric normal_deviation has a weight but no boundary normals were "
         "given");
   }
   for (int i = 0; i < n; ++i) {
     const int j = (i + 1) % n;
     if (v[i] == v[j]) {
-      return Invalid("vertices " + std::to_string(i) + " and " +
-                     std::to_string(j) + " are consecutive duplicates " +
-                     FormatVec(v[i]));
+      return InvalidArgument("vertices " + std::to_string(i) + " and " +
+                             std::to_string(j) +
+                             " are consecutive duplicates " + FormatVec(v[i]));
     }
   }
   std::vector<int> order(n);
@@ -76,14 +73,17 @@ Status CheckProblem(const Problem& problem, const Options& options) {
   });
   for (int k = 0; k + 1 < n; ++k) {
     if (v[order[k]] == v[order[k + 1]]) {
-      return Invalid("vertex " + std::to_string(order[k + 1]) +
-                     " repeats vertex " + std::to_string(order[k]) + " " +
-                     FormatVec(v[order[k]]));
+      return InvalidArgument("vertex " + std::to_string(order[k + 1]) +
+                             " repeats vertex " + std::to_string(order[k]) +
+                             " " + FormatVec(v[order[k]]));
     }
+  }
+  if (options.delaunay == DelaunayBackend::kTetgen && !TetgenAvailable()) {
+    return InvalidArgument(kNoTetgenMessage);
   }
   if (options.planar_tolerance < 0 ||
       !std::isfinite(options.planar_tolerance)) {
-    return Invalid("planar tolerance must be a finite number >= 0");
+    return InvalidArgument("planar tolerance must be a finite number >= 0");
   }
   return OkStatus();
 }
@@ -94,7 +94,7 @@ Status CheckNotCollinear(const PlaneFit& fit, int n, const Options& options) {
     s << "all " << n << " vertices are collinear (every vertex is within "
       << fit.max_line_distance << " of the line through "
       << FormatVec(fit.centroid) << ")";
-    return Invalid(s.str());
+    return InvalidArgument(s.str());
   }
   return OkStatus();
 }

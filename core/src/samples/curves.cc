@@ -8,8 +8,6 @@
 namespace dot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // n points uniformly spaced by arc length along the closed curve f(s),
 // s in [0, 1), measured on a dense polyline.
 std::vector<Vec3> SampleByArcLength(const std::function<Vec3(double)>& f,

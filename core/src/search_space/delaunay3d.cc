@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "mesh/edge_key.h"
+#include "mesh/edge_index.h"
 #include "search_space/delaunay_cgal.h"
 #include "search_space/faces_of_tetrahedra.h"
 #include "util/run_control.h"
@@ -14,20 +14,10 @@ namespace {
 // Positions i whose polygon edge (i, i+1 mod n) is on no face.
 std::vector<int32_t> MissingPolygonEdges(int32_t n,
                                          const std::vector<Triangle>& faces) {
-  std::vector<uint64_t> edges;
-  edges.reserve(3 * faces.size());
-  for (const Triangle& f : faces) {
-    edges.push_back(UndirectedEdgeKey(f[0], f[1]));
-    edges.push_back(UndirectedEdgeKey(f[1], f[2]));
-    edges.push_back(UndirectedEdgeKey(f[0], f[2]));
-  }
-  std::sort(edges.begin(), edges.end());
+  const EdgeIndex index = BuildEdgeIndex(faces);
   std::vector<int32_t> missing;
   for (int32_t i = 0; i < n; ++i) {
-    const uint64_t key = UndirectedEdgeKey(i, (i + 1) % n);
-    if (!std::binary_search(edges.begin(), edges.end(), key)) {
-      missing.push_back(i);
-    }
+    if (!HasEdge(index, i, (i + 1) % n)) missing.push_back(i);
   }
   return missing;
 }
@@ -47,6 +37,14 @@ Status Faces(DelaunayBackend backend, const Control& control,
 }
 
 }  // namespace
+
+bool TetgenAvailable() { return DOT_WITH_TETGEN; }
+
+#if !DOT_WITH_TETGEN
+Status TetgenTetrahedralize(const std::vector<Vec3>&, Tetrahedralization*) {
+  return InvalidArgument(kNoTetgenMessage);
+}
+#endif
 
 Status Delaunay3dFaces(const Options& options, const Control& control,
                        PolygonLoop* loop, std::vector<Triangle>* faces,
@@ -80,11 +78,10 @@ Status Delaunay3dFaces(const Options& options, const Control& control,
         const int32_t a = loop->ids[i], b = loop->ids[(i + 1) % loop->size()];
         const Vec3 mid = 0.5 * (loop->vertices[a] + loop->vertices[b]);
         if (mid == loop->vertices[a] || mid == loop->vertices[b]) {
-          return MakeStatus(StatusCode::kInvalidArgument,
-                            "edge protection cannot make edge " +
-                                std::to_string(a) + "-" + std::to_string(b) +
-                                " Delaunay: it is too short to halve (the "
-                                "polygon may touch itself there)");
+          return InvalidArgument("edge protection cannot make edge " +
+                                 std::to_string(a) + "-" + std::to_string(b) +
+                                 " Delaunay: it is too short to halve (the "
+                                 "polygon may touch itself there)");
         }
         ids.push_back(static_cast<int32_t>(loop->vertices.size()));
         loop->vertices.push_back(mid);

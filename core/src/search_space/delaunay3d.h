@@ -15,6 +15,11 @@
 
 namespace dot {
 
+// Why a build without TetGen (DOT_WITH_TETGEN=OFF) refuses kTetgen.
+inline constexpr char kNoTetgenMessage[] =
+    "this build has no TetGen backend (built with DOT_WITH_TETGEN=OFF); use "
+    "cgal";
+
 // Fills `faces` (over loop positions) and the tetrahedra/face counts of
 // `stats` with options.delaunay's backend; with options.protect_edges, may
 // grow `loop` by at most options.max_inserted_vertices.

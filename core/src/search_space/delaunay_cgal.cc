@@ -52,13 +52,12 @@ Status Triangulate3(const std::vector<Vec3>& points, const Control& control,
     hint = v->cell();
   }
   if (dt->number_of_vertices() != points.size()) {
-    return MakeStatus(StatusCode::kInvalidArgument,
-                      std::to_string(points.size() - dt->number_of_vertices()) +
-                          " vertices coincide with others");
+    return InvalidArgument(
+        std::to_string(points.size() - dt->number_of_vertices()) +
+        " vertices coincide with others");
   }
   if (dt->dimension() < 3) {
-    return MakeStatus(StatusCode::kInvalidArgument,
-                      "the polygon's vertices are coplanar");
+    return InvalidArgument("the polygon's vertices are coplanar");
   }
   return OkStatus();
 }

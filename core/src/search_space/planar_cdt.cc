@@ -82,11 +82,10 @@ Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
   for (const Vec3& v : loop) p.push_back(Project(v, drop_axis));
   if (auto crossing = FindCrossingEdges(p)) {
     const auto [i, j] = *crossing;
-    return MakeStatus(
-        StatusCode::kInvalidArgument,
+    return InvalidArgument(
         "planar polygon is self-intersecting: edge " + std::to_string(i) + "-" +
-            std::to_string((i + 1) % n) + " meets edge " + std::to_string(j) +
-            "-" + std::to_string((j + 1) % n));
+        std::to_string((i + 1) % n) + " meets edge " + std::to_string(j) + "-" +
+        std::to_string((j + 1) % n));
   }
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles(n);
@@ -99,14 +98,13 @@ Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
       cdt.insert_constraint(handles[i], handles[(i + 1) % n]);
     }
   } catch (const std::exception& e) {
-    return MakeStatus(
-        StatusCode::kInvalidArgument,
+    return InvalidArgument(
         std::string("planar polygon is self-intersecting (") + e.what() + ")");
   }
   if (static_cast<int32_t>(cdt.number_of_vertices()) != n) {
-    return MakeStatus(StatusCode::kInvalidArgument,
-                      "planar polygon has two vertices at one point of its "
-                      "plane");
+    return InvalidArgument(
+        "planar polygon has two vertices at one point of its "
+        "plane");
   }
   triangles->clear();
   triangles->reserve(cdt.number_of_faces());

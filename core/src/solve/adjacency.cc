@@ -5,11 +5,10 @@
 #include <limits>
 
 #include "util/run_control.h"
+#include "util/short_sort.h"
 
 namespace dot {
 namespace {
-
-constexpr int kLoBits = 24;  // n < 2^24
 
 // An edge incidence is a 4-byte record 4 * triangle + slot; its edge is
 // looked up in the triangle: slot 0 is [a, b], 1 is [b, c], 2 is [a, c].
@@ -28,37 +27,26 @@ struct EdgeOf {
   }
 };
 
-// Sorts one edge's list by `key`: insertion sort for the usual handful of
-// entries, std::sort for the long lists of cospherical configurations.
-template <typename Key>
-void SortList(int32_t* begin, int32_t* end, Key key) {
-  if (end - begin > 16) {
-    std::sort(begin, end,
-              [&](int32_t a, int32_t b) { return key(a) < key(b); });
-    return;
-  }
-  for (int32_t* i = begin + 1; i < end; ++i) {
-    const int32_t v = *i;
-    const int32_t k = key(v);
-    int32_t* j = i;
-    for (; j > begin && key(j[-1]) > k; --j) *j = j[-1];
-    *j = v;
-  }
-}
-
 // Orders every edge's lists by the triangles' third vertex, so the dynamic
 // programs (and their tie-breaking) depend only on the candidate set, not on
 // the order a Delaunay backend happened to list it in.
 void CanonicalOrder(const std::vector<Triangle>& triangles, Adjacency* adj) {
   for (int32_t e = 0; e < adj->edge_count(); ++e) {
-    SortList(adj->inner.data() + adj->inner_begin[e],
-             adj->inner.data() + adj->inner_begin[e + 1],
-             [&](int32_t t) { return triangles[t][1]; });
-    SortList(adj->outer.data() + adj->outer_begin[e],
-             adj->outer.data() + adj->outer_begin[e + 1], [&](int32_t slot) {
-               const Triangle& t = triangles[slot >> 1];
-               return (slot & 1) == 0 ? t[2] : t[0];
-             });
+    // Keys are distinct within a list: the third vertices of distinct
+    // triangles on one edge.
+    SortShortList(adj->inner.data() + adj->inner_begin[e],
+                  adj->inner.data() + adj->inner_begin[e + 1],
+                  [&](int32_t a, int32_t b) {
+                    return triangles[a][1] < triangles[b][1];
+                  });
+    auto outer_third = [&](int32_t slot) {
+      const Triangle& t = triangles[slot >> 1];
+      return (slot & 1) == 0 ? t[2] : t[0];
+    };
+    SortShortList(
+        adj->outer.data() + adj->outer_begin[e],
+        adj->outer.data() + adj->outer_begin[e + 1],
+        [&](int32_t a, int32_t b) { return outer_third(a) < outer_third(b); });
   }
 }
 
@@ -74,10 +62,11 @@ int64_t Adjacency::Bytes() const {
 
 Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
                       const Control& control, Adjacency* out) {
-  if (n >= (1 << kLoBits)) {
+  if (n > kMaxVertices) {
     return MakeStatus(StatusCode::kResourceExhausted,
                       "polygon has " + std::to_string(n) +
-                          " vertices; the limit is 16777215");
+                          " vertices; the limit is " +
+                          std::to_string(kMaxVertices));
   }
   if (triangles.size() >= (size_t{1} << 29)) {
     return MakeStatus(

@@ -21,6 +21,12 @@
 
 namespace dot {
 
+// The largest polygon the adjacency (and so every solver) accepts. It was
+// the reach of 24-bit positions in packed sort keys; the 4-byte records that
+// replaced them need no such bound, but the limit is kept as the library's
+// stated maximum (the default memory budget refuses polygons far smaller).
+inline constexpr int32_t kMaxVertices = (1 << 24) - 1;
+
 struct Adjacency {
   int32_t n = 0;
   std::vector<int32_t> edge_lo, edge_hi;  // per edge, lo < hi
@@ -38,6 +44,7 @@ struct Adjacency {
 };
 
 // `triangles` are position triples sorted ascending within each triple.
+// kResourceExhausted above kMaxVertices or 2^29 triangles.
 Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
                       const Control& control, Adjacency* out);
 

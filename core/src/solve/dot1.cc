@@ -2,16 +2,12 @@
 // DOT1 / GK1 (paper, Figure 2 left), iterative: best[e] is the cost of the
 // optimal triangulation of the chain under edge e.
 #include <chrono>
-#include <limits>
 
 #include "solve/solvers.h"
+#include "solve/tiling.h"
 #include "util/run_control.h"
 
 namespace dot {
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
-
 Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
                  const Control& control, DpSolution* out) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -53,18 +49,10 @@ Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
 
   const auto t1 = std::chrono::steady_clock::now();
   out->cost = best[adj.root];
-  out->triangles.clear();
-  std::vector<int32_t> stack = {adj.root};
-  while (!stack.empty()) {
-    const int32_t e = stack.back();
-    stack.pop_back();
-    const int32_t u = arg[e];
-    out->triangles.push_back(u);
-    for (int s = 0; s < 2; ++s) {
-      const int32_t child = adj.tri_edges[3 * u + s];
-      if (!adj.IsPolygonEdge(child)) stack.push_back(child);
-    }
-  }
+  CollectTiling(
+      adj, arg[adj.root],
+      [&](int32_t u, int s) { return arg[adj.tri_edges[3 * u + s]]; },
+      &out->triangles);
   out->tiling_ms = MsSince(t1);
   return OkStatus();
 }

@@ -12,18 +12,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "dot/metrics.h"
 #include "solve/solvers.h"
+#include "solve/tiling.h"
 #include "util/flat_vector.h"
 #include "util/run_control.h"
 
 namespace dot {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 
 // Smallest value of wd * theta + wsq * theta^2 over theta in [0, pi].
 double MinBending(BendingWeights w) {
@@ -122,18 +119,9 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
 
   const auto t1 = std::chrono::steady_clock::now();
   out->cost = root_cost;
-  out->triangles.clear();
-  std::vector<int32_t> stack = {root_arg};
-  while (!stack.empty()) {
-    const int32_t u = stack.back();
-    stack.pop_back();
-    out->triangles.push_back(u);
-    for (int s = 0; s < 2; ++s) {
-      if (!adj.IsPolygonEdge(adj.tri_edges[3 * u + s])) {
-        stack.push_back(slot_arg[2 * u + s]);
-      }
-    }
-  }
+  CollectTiling(
+      adj, root_arg, [&](int32_t u, int s) { return slot_arg[2 * u + s]; },
+      &out->triangles);
   out->tiling_ms = MsSince(t1);
   return OkStatus();
 }

@@ -10,6 +10,7 @@
 #define DOT_CORE_SOLVE_SOLVERS_H_
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "dot/status.h"
@@ -17,6 +18,9 @@
 #include "solve/adjacency.h"
 
 namespace dot {
+
+// The cost of a sub-polygon no candidate triangulates.
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct DpSolution {
   double cost = 0;

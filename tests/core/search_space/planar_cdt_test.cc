@@ -7,7 +7,7 @@
 #include <random>
 
 #include "dot/dot.h"
-#include "mesh/edge_key.h"
+#include "mesh/edge_index.h"
 
 namespace dot {
 namespace {
