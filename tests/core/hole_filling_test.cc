@@ -3,37 +3,17 @@
 // intersection-free triangulations that respect the boundary normals.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "dot/dot.h"
+#include "fixtures/meshes.h"
 
 namespace dot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-// A bumpy torus: a closed manifold mesh with curvature everywhere.
-MeshData BumpyTorus(int nu, int nv) {
-  MeshData m;
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
-      const double r = 0.5 + 0.05 * std::sin(5 * u) * std::cos(3 * v);
-      m.vertices.push_back({(2 + r * std::cos(v)) * std::cos(u),
-                            (2 + r * std::cos(v)) * std::sin(u),
-                            r * std::sin(v)});
-    }
-  }
-  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
-  for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
-  return m;
-}
+using testing::BumpyTorus;
+using testing::MeshPath;
 
 void FillHoles(const MeshData& mesh, const std::vector<int>& sizes, int* filled,
                int* attempted) {
@@ -63,21 +43,6 @@ void FillHoles(const MeshData& mesh, const std::vector<int>& sizes, int* filled,
   }
 }
 
-TEST(HolesTest, GrowHoleKeepsASimpleBoundaryLoop) {
-  const MeshData torus = BumpyTorus(60, 30);
-  for (int size : {1, 2, 10, 100, 500}) {
-    Hole hole;
-    ASSERT_TRUE(GrowHole(torus, size, 42 + size, &hole).ok());
-    EXPECT_EQ(hole.triangles, size);
-    // A disk of t triangles whose vertices are all on the boundary has
-    // t + 2 boundary vertices; interior vertices only shorten it.
-    EXPECT_LE(hole.boundary.vertices.size(), static_cast<size_t>(size) + 2);
-    EXPECT_GE(hole.boundary.vertices.size(), 3u);
-  }
-  Hole hole;
-  EXPECT_FALSE(GrowHole(torus, 4 * 3600, 1, &hole).ok());
-}
-
 TEST(HolesTest, FillsHolesOnASyntheticTorus) {
   int filled = 0, attempted = 0;
   FillHoles(BumpyTorus(80, 40),
@@ -91,7 +56,7 @@ TEST(HolesTest, FillsHolesOnASyntheticTorus) {
 TEST(HolesTest, FillsHolesOnRealMeshes) {
   int filled = 0, attempted = 0;
   for (const char* name : {"elephant.off", "armadillo.off"}) {
-    const std::string path = std::string(DOT_MESH_DIR) + "/" + name;
+    const std::string path = MeshPath(name);
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
     MeshData mesh;
     ASSERT_TRUE(ReadMeshFile(path, &mesh).ok());

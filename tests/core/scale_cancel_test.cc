@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dot/dot.h"
+#include "fixtures/checks.h"
 
 namespace dot {
 namespace {
@@ -112,6 +113,7 @@ TEST(ProgressTest, ReportsStagesInOrder) {
 }
 
 TEST(BackendTest, InjectedTetrahedralizationServesTheTetgenBackend) {
+  DOT_SKIP_WITHOUT_TETGEN();
   Problem p{MakeCurve(Curve::kSpiral, 200), {}, {}};
   int calls = 0;
   Control control;

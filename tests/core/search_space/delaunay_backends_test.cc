@@ -1,17 +1,18 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // The two 3D Delaunay backends agree: identical faces (and so identical
 // results) wherever no five vertices are cospherical, where the Delaunay
-// tetrahedralization is unique.
+// tetrahedralization is unique. CGAL reports degenerate input by name; a
+// build without TetGen refuses TetGen requests.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
 #include "dot/dot.h"
+#include "fixtures/checks.h"
+#include "fixtures/meshes.h"
 #include "search_space/delaunay_cgal.h"
 #include "search_space/faces_of_tetrahedra.h"
-#include "solve/adjacency.h"
-#include "solve/solvers.h"
 
 namespace dot {
 namespace {
@@ -44,6 +45,7 @@ std::vector<Vec3> RandomPoints(int n, uint32_t seed) {
 }
 
 TEST(DelaunayBackendsTest, SameFacesOnRandomPoints) {
+  DOT_SKIP_WITHOUT_TETGEN();
   uint32_t seed = 7;
   for (int n : {5, 12, 100, 1000, 5000}) {
     SCOPED_TRACE(n);
@@ -52,15 +54,16 @@ TEST(DelaunayBackendsTest, SameFacesOnRandomPoints) {
 }
 
 TEST(DelaunayBackendsTest, SameFacesAndResultsOnScannedMeshHoles) {
+  DOT_SKIP_WITHOUT_TETGEN();
   MeshData mesh;
-  const std::string path = std::string(DOT_MESH_DIR) + "/elephant.off";
+  const std::string path = testing::MeshPath("elephant.off");
   ASSERT_TRUE(ReadMeshFile(path, &mesh).ok()) << path;
   int compared = 0;
   for (int size : {50, 200, 800}) {
     for (uint64_t seed = 1; seed <= 3; ++seed) {
       Hole hole;
       if (!GrowHole(mesh, size, seed, &hole).ok()) continue;
-      SCOPED_TRACE(testing::Message() << size << " triangles, seed " << seed);
+      SCOPED_TRACE(::testing::Message() << size << " triangles, seed " << seed);
       ExpectSameFaces(hole.boundary.vertices);
       Problem p{hole.boundary.vertices, {}, {}};
       p.weights[Metric::kSquaredDihedral] = 1;
@@ -76,46 +79,6 @@ TEST(DelaunayBackendsTest, SameFacesAndResultsOnScannedMeshHoles) {
     }
   }
   EXPECT_GE(compared, 6);
-}
-
-// The optimal triangles (as sorted vertex triples) of a candidate list.
-std::vector<Triangle> SolveOver(const std::vector<Vec3>& loop,
-                                const std::vector<Triangle>& faces, bool bi) {
-  Adjacency adj;
-  EXPECT_TRUE(
-      BuildAdjacency(static_cast<int32_t>(loop.size()), faces, {}, &adj).ok());
-  std::vector<double> w;
-  std::vector<Vec3> unit;
-  for (const Triangle& f : faces) {
-    w.push_back(PerTriangleMetrics(loop, {}, f)[Metric::kArea]);
-    unit.push_back(UnitNormal(loop, f));
-  }
-  DpSolution sol;
-  const Status s = bi ? SolveDot2(adj, std::vector<double>(w.size(), 0), unit,
-                                  {0, 1}, {}, &sol)
-                      : SolveDot1(adj, w, {}, &sol);
-  EXPECT_TRUE(s.ok()) << s.message;
-  std::vector<Triangle> out;
-  for (int32_t t : sol.triangles) out.push_back(faces[t]);
-  return Sorted(out);
-}
-
-// Ties between equal-cost triangulations (the symmetric curves have many)
-// must break the same way however the backend happens to list its faces.
-TEST(DelaunayBackendsTest, ResultsDoNotDependOnFaceOrder) {
-  for (Curve c : kPaperCurves) {
-    const std::vector<Vec3> loop =
-        MakeCurve(c, c == Curve::kMonkey ? 840 : 240);
-    std::vector<Triangle> faces;
-    int64_t tets = 0;
-    ASSERT_TRUE(CgalDelaunayFaces(loop, {}, &faces, &tets).ok());
-    std::vector<Triangle> shuffled = faces;
-    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(5));
-    for (bool bi : {false, true}) {
-      EXPECT_EQ(SolveOver(loop, faces, bi), SolveOver(loop, shuffled, bi))
-          << CurveName(c) << (bi ? " DOT2" : " DOT1");
-    }
-  }
 }
 
 TEST(DelaunayBackendsTest, CgalReportsCoincidentAndCoplanarPoints) {
@@ -134,6 +97,7 @@ TEST(DelaunayBackendsTest, CgalReportsCoincidentAndCoplanarPoints) {
 }
 
 TEST(DelaunayBackendsTest, ResultReportsTheBackendUsed) {
+  DOT_SKIP_WITHOUT_TETGEN();
   Problem p{MakeCurve(Curve::kSpiral, 300), {}, {}};
   for (DelaunayBackend b : {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
     Options o;
@@ -150,6 +114,32 @@ TEST(DelaunayBackendsTest, ResultReportsTheBackendUsed) {
   EXPECT_TRUE(ParseDelaunayBackend("tetgen", &parsed));
   EXPECT_EQ(parsed, DelaunayBackend::kTetgen);
   EXPECT_FALSE(ParseDelaunayBackend("qhull", &parsed));
+}
+
+// Without TetGen (DOT_WITH_TETGEN=OFF) CGAL is the only backend: TetGen
+// requests are refused with a message that says what to use instead.
+TEST(DelaunayBackendsTest, BuildWithoutTetgenRefusesItClearly) {
+  if (TetgenAvailable()) GTEST_SKIP() << "this build has TetGen";
+  const std::string expected =
+      "this build has no TetGen backend (built with DOT_WITH_TETGEN=OFF); use "
+      "cgal";
+  Options tetgen;
+  tetgen.delaunay = DelaunayBackend::kTetgen;
+  for (const auto& loop :
+       {MakeCurve(Curve::kSpiral, 300),
+        std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}) {
+    const Result r = Triangulate({loop, {}, {}}, tetgen);
+    EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+    EXPECT_EQ(r.status.message, expected);
+    EXPECT_TRUE(r.triangles.empty());
+  }
+  Tetrahedralization tets;
+  const Status s = TetgenTetrahedralize(RandomPoints(10, 1), &tets);
+  EXPECT_EQ(s.code, StatusCode::kInvalidArgument);
+  EXPECT_EQ(s.message, expected);
+  // The default backend is unaffected.
+  testing::ExpectValidDisk(
+      Triangulate({MakeCurve(Curve::kSpiral, 300), {}, {}}));
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 
 #include "dot/dot.h"
 #include "fixtures/brute_force.h"
-#include "search_space/faces_of_tetrahedra.h"  // the space brute force runs over
+#include "search_space/delaunay_cgal.h"
+#include "search_space/faces_of_tetrahedra.h"
 
 namespace dot {
 namespace {
@@ -56,11 +57,18 @@ Problem RandomProblem(std::mt19937_64& rng, int n) {
   return p;
 }
 
+// TetGen's faces where it is built in: then the reference space does not
+// even share the backend with Triangulate (CGAL).
 std::set<Triangle> DelaunaySpace(const std::vector<Vec3>& v) {
-  Tetrahedralization tets;
-  EXPECT_TRUE(TetgenTetrahedralize(v, &tets).ok());
   std::vector<Triangle> faces;
-  EXPECT_TRUE(FacesOfTetrahedra(tets, &faces).ok());
+  if (TetgenAvailable()) {
+    Tetrahedralization tets;
+    EXPECT_TRUE(TetgenTetrahedralize(v, &tets).ok());
+    EXPECT_TRUE(FacesOfTetrahedra(tets, &faces).ok());
+  } else {
+    int64_t tetrahedra = 0;
+    EXPECT_TRUE(CgalDelaunayFaces(v, {}, &faces, &tetrahedra).ok());
+  }
   return {faces.begin(), faces.end()};
 }
 
