@@ -5,10 +5,11 @@
 // suite is dot-bench (bench/run-suite.sh).
 #include <benchmark/benchmark.h>
 
-#include "adjacency.h"
-#include "delaunay.h"
 #include "dot/dot.h"
-#include "solvers.h"
+#include "search_space/delaunay_cgal.h"
+#include "search_space/faces_of_tetrahedra.h"
+#include "solve/adjacency.h"
+#include "solve/solvers.h"
 #ifdef DOT_HAVE_WIRE
 #include "wire/wire.h"
 #endif

@@ -8,17 +8,18 @@
 #include <numeric>
 #include <sstream>
 
-#include "adjacency.h"
-#include "delaunay.h"
 #include "dot/space_cache.h"
 #include "dot/validate.h"
-#include "edge_protection.h"
-#include "input_check.h"
-#include "plane_fit.h"
-#include "polygon_loop.h"
-#include "prepared_space.h"
-#include "run_control.h"
-#include "solvers.h"
+#include "polygon/input_check.h"
+#include "polygon/plane_fit.h"
+#include "polygon/polygon_loop.h"
+#include "search_space/all_triangles.h"
+#include "search_space/delaunay3d.h"
+#include "search_space/planar_cdt.h"
+#include "search_space/prepared_space.h"
+#include "solve/adjacency.h"
+#include "solve/solvers.h"
+#include "util/run_control.h"
 
 namespace dot {
 namespace {

@@ -4,14 +4,14 @@
 #ifndef DOT_DOT_H_
 #define DOT_DOT_H_
 
-#include "dot/curves.h"       // IWYU pragma: export
-#include "dot/geometry.h"     // IWYU pragma: export
-#include "dot/holes.h"        // IWYU pragma: export
-#include "dot/io.h"           // IWYU pragma: export
-#include "dot/metrics.h"      // IWYU pragma: export
-#include "dot/space_cache.h"  // IWYU pragma: export
-#include "dot/status.h"       // IWYU pragma: export
-#include "dot/triangulate.h"  // IWYU pragma: export
-#include "dot/validate.h"     // IWYU pragma: export
+#include "dot/curves.h"          // IWYU pragma: export
+#include "dot/geometry.h"        // IWYU pragma: export
+#include "dot/hole_generator.h"  // IWYU pragma: export
+#include "dot/io.h"              // IWYU pragma: export
+#include "dot/metrics.h"         // IWYU pragma: export
+#include "dot/space_cache.h"     // IWYU pragma: export
+#include "dot/status.h"          // IWYU pragma: export
+#include "dot/triangulate.h"     // IWYU pragma: export
+#include "dot/validate.h"        // IWYU pragma: export
 
 #endif  // DOT_DOT_H_

@@ -31,6 +31,10 @@ inline Status OkStatus() { return {}; }
 inline Status MakeStatus(StatusCode code, std::string message) {
   return {code, std::move(message)};
 }
+// The common failure: the input is malformed; `message` names what and where.
+inline Status InvalidArgument(std::string message) {
+  return {StatusCode::kInvalidArgument, std::move(message)};
+}
 
 }  // namespace dot
 

@@ -49,6 +49,11 @@ enum class Solver { kNone, kDot1, kDot2, kGk1, kGk2 };
 // Who computes the 3D Delaunay tetrahedralization. Both use exact
 // predicates; they can differ only in how they break cospherical ties.
 enum class DelaunayBackend { kCgal, kTetgen };
+// Whether this build has the TetGen backend (CMake option DOT_WITH_TETGEN,
+// also visible to dependents as the compile definition DOT_WITH_TETGEN=1/0).
+// Without it, CGAL is the only backend and a request for kTetgen fails with
+// kInvalidArgument.
+bool TetgenAvailable();
 enum class Stage { kValidate, kDelaunay, kAdjacency, kDynamicProgram, kTiling };
 
 std::string_view SearchSpaceName(SearchSpace s);
@@ -108,7 +113,8 @@ using TetrahedralizeFn = std::function<Status(const std::vector<Vec3>& points,
 
 // The default backend: TetGen in this process, serialized by a mutex
 // (TetGen keeps file-scope state). It aborts the process on exactly planar
-// input, which Triangulate never passes it.
+// input, which Triangulate never passes it. In a build without TetGen
+// (!TetgenAvailable()) it returns kInvalidArgument.
 Status TetgenTetrahedralize(const std::vector<Vec3>& points,
                             Tetrahedralization* out);
 

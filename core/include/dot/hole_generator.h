@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Test and benchmark data: hole boundaries cut into triangle meshes as in the
+// paper (section 5.1). A disk-shaped hole grows from a random triangle, one
+// incident triangle at a time, keeping its boundary a simple loop. This
+// makes holes; it does not fill them (Triangulate does).
+#ifndef DOT_HOLE_GENERATOR_H_
+#define DOT_HOLE_GENERATOR_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "dot/io.h"
+#include "dot/status.h"
+
+namespace dot {
+
+struct Hole {
+  PolygonData boundary;  // loop of mesh vertices, with mesh vertex normals
+  int triangles = 0;     // triangles removed
+};
+
+// Grows a hole of `triangles` triangles from a triangle chosen by `seed`.
+// Boundary normals are area-weighted normals of the triangles kept. Fails
+// when the mesh has no room for such a hole around the seed. Edge protection
+// is applied by Triangulate (Options::protect_edges).
+Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out);
+
+}  // namespace dot
+
+#endif  // DOT_HOLE_GENERATOR_H_

@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "dot/io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace dot {
+namespace {
+
+std::string Extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool IsBlankOrComment(const std::string& line) {
+  const auto first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+
+// OBJ index (1-based, negative from the end) to 0-based.
+bool ObjIndex(long raw, size_t count, int32_t* out) {
+  const long idx = raw > 0 ? raw - 1 : static_cast<long>(count) + raw;
+  if (raw == 0 || idx < 0 || idx >= static_cast<long>(count)) return false;
+  *out = static_cast<int32_t>(idx);
+  return true;
+}
+
+}  // namespace
+
+Status ReadPolygonText(std::istream& in, PolygonData* out) {
+  *out = {};
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (IsBlankOrComment(line)) continue;
+    std::istringstream s(line);
+    std::vector<double> x;
+    double d;
+    while (s >> d) x.push_back(d);
+    std::string rest;
+    if (!s.eof() && (s.clear(), s >> rest)) {
+      return InvalidArgument("line " + std::to_string(lineno) + ": '" + rest +
+                             "' is not a number");
+    }
+    if (x.size() != 3 && x.size() != 6) {
+      return InvalidArgument("line " + std::to_string(lineno) +
+                             ": expected 3 (x y z)"
+                             " or 6 (x y z nx ny nz) numbers, found " +
+                             std::to_string(x.size()));
+    }
+    out->vertices.push_back({x[0], x[1], x[2]});
+    if (x.size() == 6) out->normals.push_back({x[3], x[4], x[5]});
+  }
+  if (!out->normals.empty() && out->normals.size() != out->vertices.size()) {
+    return InvalidArgument("some lines have normals and some do not");
+  }
+  return OkStatus();
+}
+
+Status ReadPolygonObj(std::istream& in, PolygonData* out) {
+  *out = {};
+  std::vector<Vec3> v, vn;
+  std::vector<int32_t> loop;
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    std::istringstream s(line);
+    std::string tag;
+    if (!(s >> tag) || tag[0] == '#') continue;
+    if (tag == "v" || tag == "vn") {
+      Vec3 p;
+      if (!(s >> p.x >> p.y >> p.z)) {
+        return InvalidArgument("line " + std::to_string(lineno) + ": bad '" +
+                               tag + "' line");
+      }
+      (tag == "v" ? v : vn).push_back(p);
+    } else if (tag == "l") {
+      if (!loop.empty()) {
+        return InvalidArgument("line " + std::to_string(lineno) +
+                               ": only one 'l' polyline is supported");
+      }
+      std::string tok;
+      while (s >> tok) {
+        int32_t idx;
+        const long raw = std::strtol(tok.c_str(), nullptr, 10);
+        if (!ObjIndex(raw, v.size(), &idx)) {
+          return InvalidArgument("line " + std::to_string(lineno) +
+                                 ": index '" + tok + "' is out of range");
+        }
+        loop.push_back(idx);
+      }
+    }
+  }
+  if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  if (loop.empty()) {
+    for (size_t i = 0; i < v.size(); ++i)
+      loop.push_back(static_cast<int32_t>(i));
+  }
+  for (int32_t i : loop) out->vertices.push_back(v[i]);
+  if (!vn.empty()) {
+    if (vn.size() != v.size()) {
+      return InvalidArgument(std::to_string(vn.size()) + " 'vn' normals for " +
+                             std::to_string(v.size()) + " vertices");
+    }
+    for (int32_t i : loop) out->normals.push_back(vn[i]);
+  }
+  return OkStatus();
+}
+
+Status ReadPolygonFile(const std::string& path, PolygonData* out) {
+  std::ifstream in(path);
+  if (!in) return InvalidArgument("cannot open polygon file '" + path + "'");
+  Status s = Extension(path) == "obj" ? ReadPolygonObj(in, out)
+                                      : ReadPolygonText(in, out);
+  if (!s.ok()) s.message = path + ": " + s.message;
+  return s;
+}
+
+Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
+  std::ofstream out(path);
+  if (!out) return InvalidArgument("cannot write '" + path + "'");
+  out.precision(17);
+  for (size_t i = 0; i < polygon.vertices.size(); ++i) {
+    const Vec3& p = polygon.vertices[i];
+    out << p.x << ' ' << p.y << ' ' << p.z;
+    if (!polygon.normals.empty()) {
+      const Vec3& n = polygon.normals[i];
+      out << ' ' << n.x << ' ' << n.y << ' ' << n.z;
+    }
+    out << '\n';
+  }
+  return out ? OkStatus() : InvalidArgument("failed writing '" + path + "'");
+}
+
+Status WriteMesh(std::ostream& out, const std::string& format,
+                 const MeshData& mesh) {
+  out.precision(17);
+  if (format == "obj") {
+    for (const Vec3& p : mesh.vertices)
+      out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const Triangle& t : mesh.triangles)
+      out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  } else if (format == "off") {
+    out << "OFF\n"
+        << mesh.vertices.size() << ' ' << mesh.triangles.size() << " 0\n";
+    for (const Vec3& p : mesh.vertices)
+      out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const Triangle& t : mesh.triangles)
+      out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  } else if (format == "ply") {
+    out << "ply\nformat ascii 1.0\nelement vertex " << mesh.vertices.size()
+        << "\nproperty double x\nproperty double y\nproperty double z\n"
+        << "element face " << mesh.triangles.size()
+        << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const Vec3& p : mesh.vertices)
+      out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const Triangle& t : mesh.triangles)
+      out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  } else {
+    return InvalidArgument("unknown mesh format '" + format +
+                           "'; use obj, ply or off");
+  }
+  return out ? OkStatus() : InvalidArgument("failed writing the mesh");
+}
+
+Status WriteMeshFile(const std::string& path, const MeshData& mesh) {
+  const std::string ext = Extension(path);
+  if (ext != "obj" && ext != "ply" && ext != "off") {
+    return InvalidArgument("cannot tell the mesh format of '" + path +
+                           "'; name it .obj, .ply or .off");
+  }
+  std::ofstream out(path);
+  if (!out) return InvalidArgument("cannot write '" + path + "'");
+  return WriteMesh(out, ext, mesh);
+}
+
+Status ReadMeshFile(const std::string& path, MeshData* out) {
+  *out = {};
+  std::ifstream in(path);
+  if (!in) return InvalidArgument("cannot open mesh file '" + path + "'");
+  auto add_polygon = [out](const std::vector<int32_t>& f) {
+    for (size_t k = 1; k + 1 < f.size(); ++k)
+      out->triangles.push_back({f[0], f[k], f[k + 1]});
+  };
+  const std::string ext = Extension(path);
+  if (ext == "off") {
+    std::string header;
+    size_t nv = 0, nf = 0, ne = 0;
+    in >> header;
+    if (header != "OFF" || !(in >> nv >> nf >> ne)) {
+      return InvalidArgument(path + ": not an OFF file");
+    }
+    out->vertices.resize(nv);
+    for (Vec3& p : out->vertices) {
+      if (!(in >> p.x >> p.y >> p.z))
+        return InvalidArgument(path + ": truncated");
+      std::string rest;
+      std::getline(in, rest);  // skip colors
+    }
+    for (size_t i = 0; i < nf; ++i) {
+      size_t k;
+      if (!(in >> k) || k < 3) return InvalidArgument(path + ": bad face");
+      std::vector<int32_t> f(k);
+      for (int32_t& v : f) {
+        if (!(in >> v) || v < 0 || static_cast<size_t>(v) >= nv) {
+          return InvalidArgument(path + ": bad face index");
+        }
+      }
+      std::string rest;
+      std::getline(in, rest);
+      add_polygon(f);
+    }
+    return OkStatus();
+  }
+  if (ext == "obj") {
+    std::string line;
+    while (std::getline(in, line)) {
+      std::istringstream s(line);
+      std::string tag;
+      s >> tag;
+      if (tag == "v") {
+        Vec3 p;
+        s >> p.x >> p.y >> p.z;
+        out->vertices.push_back(p);
+      } else if (tag == "f") {
+        std::vector<int32_t> f;
+        std::string tok;
+        while (s >> tok) {
+          int32_t idx;
+          if (!ObjIndex(std::strtol(tok.c_str(), nullptr, 10),
+                        out->vertices.size(), &idx)) {
+            return InvalidArgument(path + ": bad face index '" + tok + "'");
+          }
+          f.push_back(idx);
+        }
+        if (f.size() >= 3) add_polygon(f);
+      }
+    }
+    return OkStatus();
+  }
+  return InvalidArgument("cannot read mesh '" + path + "': use .off or .obj");
+}
+
+}  // namespace dot

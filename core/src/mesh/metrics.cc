@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "dot/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/edge_index.h"
+
+namespace dot {
+
+bool IsBiTriangle(Metric m) {
+  return m == Metric::kDihedral || m == Metric::kSquaredDihedral;
+}
+
+bool HasBiTriangleWeight(const MetricWeights& w) {
+  return w[Metric::kDihedral] != 0 || w[Metric::kSquaredDihedral] != 0;
+}
+
+bool HasNonZeroWeight(const MetricWeights& w) {
+  return std::any_of(w.v.begin(), w.v.end(), [](double x) { return x != 0; });
+}
+
+Vec3 UnitNormal(const std::vector<Vec3>& vertices, const Triangle& t) {
+  const Vec3& a = vertices[t[0]];
+  return Normalized(Cross(vertices[t[1]] - a, vertices[t[2]] - a));
+}
+
+double BendingAngle(const Vec3& n1, const Vec3& n2) {
+  return std::acos(std::clamp(Dot(n1, n2), -1.0, 1.0));
+}
+
+MetricValues PerTriangleMetrics(const std::vector<Vec3>& vertices,
+                                const std::vector<Vec3>& normals,
+                                const Triangle& t) {
+  const Vec3& a = vertices[t[0]];
+  const Vec3& b = vertices[t[1]];
+  const Vec3& c = vertices[t[2]];
+  const Vec3 cross = Cross(b - a, c - a);
+  const double twice_area = Norm(cross);
+  const double ab = Distance(a, b), bc = Distance(b, c), ca = Distance(c, a);
+  MetricValues m;
+  m[Metric::kArea] = 0.5 * twice_area;
+  m[Metric::kPerimeter] = ab + bc + ca;
+  const double sq = ab * ab + bc * bc + ca * ca;
+  m[Metric::kShape] =
+      sq > 0 ? std::max(0.0, 1.0 - 2.0 * std::sqrt(3.0) * twice_area / sq)
+             : 1.0;
+  if (!normals.empty()) {
+    const Vec3 n = twice_area > 0 ? (1.0 / twice_area) * cross : Vec3{};
+    double dev = 0;
+    for (int32_t v : t) dev += BendingAngle(n, Normalized(normals[v]));
+    m[Metric::kNormalDeviation] = dev;
+  }
+  return m;
+}
+
+MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
+                             const std::vector<Vec3>& normals,
+                             const std::vector<Triangle>& triangles) {
+  MetricValues sum;
+  std::vector<Vec3> unit(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const MetricValues m = PerTriangleMetrics(vertices, normals, triangles[i]);
+    for (Metric k : kAllMetrics) sum[k] += m[k];
+    unit[i] = UnitNormal(vertices, triangles[i]);
+  }
+  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
+    // Only manifold edges (exactly two triangles) have a dihedral angle.
+    if (edge.size() != 2) return;
+    const double theta =
+        BendingAngle(unit[edge[0].triangle], unit[edge[1].triangle]);
+    sum[Metric::kDihedral] += theta;
+    sum[Metric::kSquaredDihedral] += theta * theta;
+  });
+  return sum;
+}
+
+double WeightedTotal(const MetricWeights& w, const MetricValues& costs) {
+  double total = 0;
+  for (Metric m : kAllMetrics) {
+    if (w[m] != 0) total += w[m] * costs[m];
+  }
+  return total;
+}
+
+}  // namespace dot

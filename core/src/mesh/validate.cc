@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Mesh validation, in steps: index ranges, degenerate triangles, edges
+// (from the edge index), boundary, disk topology, self-intersections.
+// Intersections use CGAL's box intersection for candidate pairs and exact
+// predicates (Epick) for the test itself, so "intersection-free" is a
+// proof, not a tolerance.
+#include "dot/validate.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <string>
+#include <utility>
+
+#include "mesh/edge_index.h"
+
+namespace dot {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P3 = K::Point_3;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;
+
+P3 ToPoint(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Do triangles s and t intersect anywhere but in the vertices and edge they
+// share? `shared` counts their common vertices.
+bool Overlaps(const std::vector<P3>& p, const Triangle& s, const Triangle& t) {
+  int shared = 0;
+  for (int32_t a : s)
+    for (int32_t b : t) shared += a == b;
+  const K::Triangle_3 ts(p[s[0]], p[s[1]], p[s[2]]);
+  const K::Triangle_3 tt(p[t[0]], p[t[1]], p[t[2]]);
+  if (shared == 0) return CGAL::do_intersect(ts, tt);
+  auto rest = [](const Triangle& x, const Triangle& y) {  // x minus y
+    std::vector<int32_t> r;
+    for (int32_t a : x)
+      if (std::find(y.begin(), y.end(), a) == y.end()) r.push_back(a);
+    return r;
+  };
+  const std::vector<int32_t> rs = rest(s, t), rt = rest(t, s);
+  if (shared == 1) {
+    // They meet beyond the shared vertex iff the edge opposite it in one
+    // triangle meets the other triangle (see the contract in validate.h).
+    return CGAL::do_intersect(K::Segment_3(p[rs[0]], p[rs[1]]), tt) ||
+           CGAL::do_intersect(K::Segment_3(p[rt[0]], p[rt[1]]), ts);
+  }
+  if (shared == 2) {
+    // Sharing an edge, they overlap only when folded onto one plane.
+    std::vector<int32_t> common;
+    for (int32_t a : s)
+      if (std::find(t.begin(), t.end(), a) != t.end()) common.push_back(a);
+    const P3 &a = p[common[0]], &b = p[common[1]], &c = p[rs[0]], &d = p[rt[0]];
+    return CGAL::orientation(a, b, c, d) == CGAL::COPLANAR &&
+           CGAL::coplanar_orientation(a, b, c, d) == CGAL::POSITIVE;
+  }
+  return true;  // the same triangle twice
+}
+
+void NoteProblem(const std::string& what, MeshReport* r) {
+  if (r->first_problem.empty()) r->first_problem = what;
+}
+
+bool IndicesInRange(int32_t vertex_count, const std::vector<int32_t>& polygon,
+                    const std::vector<Triangle>& triangles) {
+  bool ok = true;
+  for (const Triangle& t : triangles) {
+    for (int32_t v : t) ok &= v >= 0 && v < vertex_count;
+  }
+  for (int32_t v : polygon) ok &= v >= 0 && v < vertex_count;
+  return ok;
+}
+
+// A repeated index or three exactly collinear corners.
+void CountDegenerate(const std::vector<Vec3>& vertices,
+                     const std::vector<Triangle>& triangles, MeshReport* r) {
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& t = triangles[i];
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if (repeated ||
+        CGAL::collinear(ToPoint(vertices[t[0]]), ToPoint(vertices[t[1]]),
+                        ToPoint(vertices[t[2]]))) {
+      ++r->degenerate_triangles;
+      NoteProblem("triangle " + std::to_string(i) + " is degenerate", r);
+    }
+  }
+}
+
+// Union-find over triangles, joined across manifold edges.
+struct Components {
+  std::vector<int32_t> parent;
+  explicit Components(size_t count) : parent(count) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int32_t Find(int32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void Join(int32_t a, int32_t b) { parent[Find(a)] = Find(b); }
+  int64_t Count() {
+    int64_t roots = 0;
+    for (size_t t = 0; t < parent.size(); ++t) {
+      roots += Find(static_cast<int32_t>(t)) == static_cast<int32_t>(t);
+    }
+    return roots;
+  }
+};
+
+// What the pass over edges finds besides the report's counters.
+struct EdgeFindings {
+  int64_t edges = 0;
+  std::vector<std::pair<int32_t, int32_t>> boundary;  // directed sides
+  std::vector<int32_t> joins;  // per vertex: interior edges at it
+};
+
+// Each edge is on one triangle (boundary), two with opposite directions
+// (interior), or else is misoriented or non-manifold.
+EdgeFindings CheckEdges(size_t vertex_count,
+                        const std::vector<Triangle>& triangles,
+                        Components* components, MeshReport* r) {
+  EdgeFindings f;
+  f.joins.assign(vertex_count, 0);
+  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
+    ++f.edges;
+    const std::string name =
+        std::to_string(edge.lo()) + "-" + std::to_string(edge.hi());
+    if (edge.size() == 1) {
+      f.boundary.emplace_back(edge[0].from(), edge[0].to());
+    } else if (edge.size() == 2) {
+      if (edge[0].from() == edge[1].from()) {
+        ++r->misoriented_edges;
+        NoteProblem("edge " + name + " is used twice in the same direction", r);
+      }
+      components->Join(edge[0].triangle, edge[1].triangle);
+      ++f.joins[edge.lo()];
+      ++f.joins[edge.hi()];
+    } else {
+      ++r->non_manifold_edges;
+      NoteProblem("edge " + name + " is on " + std::to_string(edge.size()) +
+                      " triangles",
+                  r);
+    }
+  });
+  return f;
+}
+
+// The boundary must be exactly the polygon's edges, all in one direction.
+void CheckBoundary(const std::vector<int32_t>& polygon,
+                   std::vector<std::pair<int32_t, int32_t>> boundary,
+                   MeshReport* r) {
+  const auto n = static_cast<int32_t>(polygon.size());
+  std::vector<std::pair<int32_t, int32_t>> forward, backward;
+  for (int32_t i = 0; i < n; ++i) {
+    forward.emplace_back(polygon[i], polygon[(i + 1) % n]);
+    backward.emplace_back(polygon[(i + 1) % n], polygon[i]);
+  }
+  std::sort(boundary.begin(), boundary.end());
+  std::sort(forward.begin(), forward.end());
+  std::sort(backward.begin(), backward.end());
+  r->boundary_is_polygon = boundary == forward || boundary == backward;
+  if (!r->boundary_is_polygon) {
+    NoteProblem("the boundary (" + std::to_string(boundary.size()) +
+                    " edges) is not the polygon (" + std::to_string(n) +
+                    " edges)",
+                r);
+  }
+}
+
+// A disk is connected, has Euler characteristic V - E + F = 1, and the
+// triangles around every vertex form a single fan.
+void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
+               const EdgeFindings& edges, Components* components,
+               MeshReport* r) {
+  std::vector<int32_t> used;
+  for (const Triangle& t : triangles) {
+    used.insert(used.end(), t.begin(), t.end());
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const int64_t component_count = components->Count();
+  const int64_t euler = static_cast<int64_t>(used.size()) - edges.edges +
+                        static_cast<int64_t>(triangles.size());
+  // Around a vertex the triangles of an edge-manifold mesh form paths and
+  // cycles; it is a single fan when its interior edges (joins) number its
+  // triangles minus one (a path) or the count itself (a cycle).
+  std::vector<int32_t> degree(vertex_count, 0);
+  for (const Triangle& t : triangles) {
+    for (int32_t v : t) ++degree[v];
+  }
+  bool fans_ok = true;
+  for (int32_t v : used) fans_ok &= edges.joins[v] >= degree[v] - 1;
+  r->disk = !triangles.empty() && component_count == 1 && euler == 1 &&
+            fans_ok && r->non_manifold_edges == 0;
+  if (!r->disk) {
+    NoteProblem("not a disk: " + std::to_string(component_count) +
+                    " components, Euler characteristic " +
+                    std::to_string(euler) +
+                    (fans_ok ? "" : ", a vertex with several fans"),
+                r);
+  }
+}
+
+}  // namespace
+
+int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
+                               const std::vector<Triangle>& triangles) {
+  std::vector<P3> p;
+  p.reserve(vertices.size());
+  for (const Vec3& v : vertices) p.push_back(ToPoint(v));
+  std::vector<Box> boxes;
+  boxes.reserve(triangles.size());
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& t = triangles[i];
+    boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(),
+                       static_cast<int32_t>(i));
+  }
+  int64_t count = 0;
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
+      });
+  return count;
+}
+
+MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
+                        const std::vector<int32_t>& polygon,
+                        const std::vector<Triangle>& triangles,
+                        bool check_intersections) {
+  MeshReport r;
+  r.indices_in_range =
+      IndicesInRange(static_cast<int32_t>(vertices.size()), polygon, triangles);
+  if (!r.indices_in_range) {
+    NoteProblem("a vertex index is out of range", &r);
+    return r;
+  }
+  CountDegenerate(vertices, triangles, &r);
+  Components components(triangles.size());
+  EdgeFindings edges = CheckEdges(vertices.size(), triangles, &components, &r);
+  CheckBoundary(polygon, std::move(edges.boundary), &r);
+  CheckDisk(vertices.size(), triangles, edges, &components, &r);
+  if (check_intersections && r.degenerate_triangles == 0) {
+    r.intersecting_pairs = CountIntersectingPairs(vertices, triangles);
+    if (r.intersecting_pairs > 0) {
+      NoteProblem(std::to_string(r.intersecting_pairs) +
+                      " pairs of triangles intersect",
+                  &r);
+    }
+  }
+  return r;
+}
+
+}  // namespace dot

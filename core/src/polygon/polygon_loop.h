@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The polygon as the solvers see it: vertex ids in loop order over a vertex
+// array that edge protection may append to.
+#ifndef DOT_CORE_POLYGON_POLYGON_LOOP_H_
+#define DOT_CORE_POLYGON_POLYGON_LOOP_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "dot/geometry.h"
+
+namespace dot {
+
+struct PolygonLoop {
+  std::vector<Vec3> vertices;  // input vertices, then inserted ones
+  std::vector<Vec3> normals;   // parallel to vertices, or empty
+  std::vector<int32_t> ids;    // the loop: position -> vertex id
+
+  int32_t size() const { return static_cast<int32_t>(ids.size()); }
+  std::vector<Vec3> Points() const {
+    std::vector<Vec3> p;
+    p.reserve(ids.size());
+    for (int32_t id : ids) p.push_back(vertices[id]);
+    return p;
+  }
+};
+
+}  // namespace dot
+
+#endif  // DOT_CORE_POLYGON_POLYGON_LOOP_H_

@@ -1,0 +1,216 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// GrowHole in steps: index the mesh's topology, pick an interior start
+// triangle, grow the hole one triangle at a time while it stays a disk, then
+// walk its boundary and take normals from the triangles that remain.
+#include "dot/hole_generator.h"
+
+#include <random>
+#include <string>
+
+#include "mesh/edge_index.h"
+
+namespace dot {
+namespace {
+
+struct MeshTopology {
+  std::vector<int32_t> across;  // 3 per triangle: neighbour over side k, -1
+  std::vector<int32_t> vertex_degree;  // triangles per vertex
+  // Vertex on a mesh boundary or non-manifold edge: holes keep off it, so
+  // they never open onto the outside or pinch.
+  std::vector<bool> on_border;
+};
+
+MeshTopology BuildTopology(const MeshData& mesh) {
+  MeshTopology topo;
+  topo.across.assign(3 * mesh.triangles.size(), -1);
+  topo.vertex_degree.assign(mesh.vertices.size(), 0);
+  topo.on_border.assign(mesh.vertices.size(), false);
+  for (const Triangle& t : mesh.triangles) {
+    for (int32_t v : t) ++topo.vertex_degree[v];
+  }
+  ForEachEdge(BuildEdgeIndex(mesh.triangles), [&](const EdgeUses& edge) {
+    if (edge.size() == 2) {
+      topo.across[3 * edge[0].triangle + edge[0].side] = edge[1].triangle;
+      topo.across[3 * edge[1].triangle + edge[1].side] = edge[0].triangle;
+    } else {
+      topo.on_border[edge.lo()] = true;
+      topo.on_border[edge.hi()] = true;
+    }
+  });
+  return topo;
+}
+
+// The hole while it grows.
+struct Growth {
+  const MeshData& mesh;
+  const MeshTopology& topo;
+  std::vector<bool> in_hole;
+  std::vector<int32_t> hole_degree;  // hole triangles per vertex
+  std::vector<int32_t> frontier;     // candidates: neighbours of the hole
+  int grown = 0;
+
+  Growth(const MeshData& m, const MeshTopology& t)
+      : mesh(m),
+        topo(t),
+        in_hole(m.triangles.size(), false),
+        hole_degree(m.vertices.size(), 0) {}
+
+  bool InHole(int32_t t) const { return t >= 0 && in_hole[t]; }
+};
+
+bool TouchesBorder(const Growth& g, int32_t t) {
+  for (int32_t v : g.mesh.triangles[t]) {
+    if (g.topo.on_border[v]) return true;
+  }
+  return false;
+}
+
+// Adding t keeps the hole a disk when t shares exactly one side with it and
+// its third vertex is new, or two sides and closes the fan around their
+// common vertex.
+bool KeepsDisk(const Growth& g, int32_t t) {
+  if (g.in_hole[t] || TouchesBorder(g, t)) return false;
+  int shared = 0, free_side = -1, shared_side = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (g.InHole(g.topo.across[3 * t + k])) {
+      ++shared;
+      if (shared_side < 0) shared_side = k;
+    } else {
+      free_side = k;
+    }
+  }
+  const Triangle& tri = g.mesh.triangles[t];
+  if (shared == 1) {
+    // The vertex opposite the shared side must not touch the hole.
+    return g.hole_degree[tri[(shared_side + 2) % 3]] == 0;
+  }
+  if (shared == 2) {
+    // The common vertex of the two shared sides is opposite the free one.
+    const int32_t v = tri[(free_side + 2) % 3];
+    return g.hole_degree[v] + 1 == g.topo.vertex_degree[v];
+  }
+  return false;
+}
+
+void Add(Growth* g, int32_t t) {
+  g->in_hole[t] = true;
+  ++g->grown;
+  for (int32_t v : g->mesh.triangles[t]) ++g->hole_degree[v];
+  for (int k = 0; k < 3; ++k) {
+    const int32_t nb = g->topo.across[3 * t + k];
+    if (nb >= 0 && !g->in_hole[nb]) g->frontier.push_back(nb);
+  }
+}
+
+// A random triangle off the border, or -1 after 1000 tries.
+int32_t PickStart(const Growth& g, std::mt19937_64* rng) {
+  const auto nt = static_cast<int32_t>(g.mesh.triangles.size());
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const auto t = static_cast<int32_t>((*rng)() % nt);
+    if (!TouchesBorder(g, t)) return t;
+  }
+  return -1;
+}
+
+// Adds random frontier triangles that keep the hole a disk until it has
+// `triangles` or the frontier runs out.
+void GrowTo(int triangles, std::mt19937_64* rng, Growth* g) {
+  while (g->grown < triangles && !g->frontier.empty()) {
+    const size_t pick = (*rng)() % g->frontier.size();
+    const int32_t t = g->frontier[pick];
+    g->frontier[pick] = g->frontier.back();
+    g->frontier.pop_back();
+    if (KeepsDisk(*g, t)) Add(g, t);
+  }
+}
+
+// The boundary as next[a] = b for each directed side a -> b of a hole
+// triangle whose neighbour stays; `first` is one of its vertices.
+Status BoundaryLinks(const Growth& g, std::vector<int32_t>* next,
+                     int32_t* first, int* edges) {
+  next->assign(g.mesh.vertices.size(), -1);
+  *first = -1;
+  *edges = 0;
+  for (size_t t = 0; t < g.mesh.triangles.size(); ++t) {
+    if (!g.in_hole[t]) continue;
+    const Triangle& tri = g.mesh.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      if (g.InHole(g.topo.across[3 * t + k])) continue;
+      const int32_t a = tri[k], b = tri[(k + 1) % 3];
+      if ((*next)[a] != -1) {
+        return MakeStatus(StatusCode::kInternal,
+                          "hole boundary is not a simple loop");
+      }
+      (*next)[a] = b;
+      *first = a;
+      ++*edges;
+    }
+  }
+  return OkStatus();
+}
+
+// Per vertex, the sum of area-weighted normals of the triangles that remain.
+std::vector<Vec3> KeptNormals(const Growth& g) {
+  std::vector<Vec3> normal(g.mesh.vertices.size());
+  for (size_t t = 0; t < g.mesh.triangles.size(); ++t) {
+    if (g.in_hole[t]) continue;
+    const Triangle& tri = g.mesh.triangles[t];
+    const Vec3& a = g.mesh.vertices[tri[0]];
+    const Vec3 c =
+        Cross(g.mesh.vertices[tri[1]] - a, g.mesh.vertices[tri[2]] - a);
+    for (int32_t v : tri) normal[v] = normal[v] + c;
+  }
+  return normal;
+}
+
+// Follows the boundary links once around from `first`.
+Status WalkBoundary(const Growth& g, const std::vector<int32_t>& next,
+                    int32_t first, int edges, PolygonData* boundary) {
+  const std::vector<Vec3> normal = KeptNormals(g);
+  int32_t v = first;
+  do {
+    boundary->vertices.push_back(g.mesh.vertices[v]);
+    boundary->normals.push_back(Normalized(normal[v]));
+    v = next[v];
+  } while (v != first && v != -1 &&
+           static_cast<int>(boundary->vertices.size()) <= edges);
+  if (v != first || static_cast<int>(boundary->vertices.size()) != edges) {
+    return MakeStatus(StatusCode::kInternal,
+                      "hole boundary is not a single loop");
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
+  const auto nt = static_cast<int32_t>(mesh.triangles.size());
+  if (nt == 0 || triangles < 1 || triangles >= nt) {
+    return InvalidArgument("hole size must be between 1 and the mesh's " +
+                           std::to_string(nt) + " triangles");
+  }
+  const MeshTopology topo = BuildTopology(mesh);
+  Growth growth(mesh, topo);
+  std::mt19937_64 rng(seed);
+  const int32_t start = PickStart(growth, &rng);
+  if (start < 0) {
+    return InvalidArgument("found no interior triangle to start a hole from");
+  }
+  Add(&growth, start);
+  GrowTo(triangles, &rng, &growth);
+  if (growth.grown < triangles) {
+    return InvalidArgument("the hole stopped growing at " +
+                           std::to_string(growth.grown) + " of " +
+                           std::to_string(triangles) + " triangles");
+  }
+  std::vector<int32_t> next;
+  int32_t first = -1;
+  int edges = 0;
+  Status s = BoundaryLinks(growth, &next, &first, &edges);
+  if (!s.ok()) return s;
+  *out = {};
+  out->triangles = growth.grown;
+  return WalkBoundary(growth, next, first, edges, &out->boundary);
+}
+
+}  // namespace dot

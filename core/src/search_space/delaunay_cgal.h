@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The CGAL 3D Delaunay backend: exact predicates, re-entrant, cancellable
+// between insertions. Its output is the same whatever the insertion order or
+// thread count: CGAL breaks cospherical ties by symbolic perturbation, so the
+// tetrahedralization is unique.
+#ifndef DOT_CORE_SEARCH_SPACE_DELAUNAY_CGAL_H_
+#define DOT_CORE_SEARCH_SPACE_DELAUNAY_CGAL_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "dot/geometry.h"
+#include "dot/status.h"
+#include "dot/triangulate.h"
+
+namespace dot {
+
+// Distinct faces (each sorted ascending, in no particular order) of the 3D
+// Delaunay tetrahedralization of `points` (no duplicates, not all coplanar),
+// and its number of finite tetrahedra. Polls `control` while inserting.
+Status CgalDelaunayFaces(const std::vector<Vec3>& points,
+                         const Control& control, std::vector<Triangle>* faces,
+                         int64_t* tetrahedra);
+
+}  // namespace dot
+
+#endif  // DOT_CORE_SEARCH_SPACE_DELAUNAY_CGAL_H_

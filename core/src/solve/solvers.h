@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The two dynamic programs over an Adjacency (paper, section 3), written as
+// single forward passes over edges by increasing span: no recursion, tables
+// in flat arrays.
+//  - Dot1: per-triangle weights only. One state per edge.
+//  - Dot2: per-triangle weights plus bending-angle terms between adjacent
+//    triangles. One state per (short edge, outer triangle) slot.
+// The same code runs GK1/GK2 when the adjacency holds every triangle.
+#ifndef DOT_CORE_SOLVE_SOLVERS_H_
+#define DOT_CORE_SOLVE_SOLVERS_H_
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "dot/status.h"
+#include "dot/triangulate.h"
+#include "solve/adjacency.h"
+
+namespace dot {
+
+// The cost of a sub-polygon no candidate triangulates.
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct DpSolution {
+  double cost = 0;
+  std::vector<int32_t> triangles;  // candidate triangle ids
+  int64_t states = 0;
+  int64_t table_bytes = 0;
+  double dp_ms = 0, tiling_ms = 0;
+};
+
+// kNoTriangulation when no triangulation exists in the candidate set.
+Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
+                 const Control& control, DpSolution* out);
+
+struct BendingWeights {
+  double dihedral = 0;          // weight of theta
+  double squared_dihedral = 0;  // weight of theta^2
+};
+Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
+                 const std::vector<Vec3>& unit_normals, BendingWeights bending,
+                 const Control& control, DpSolution* out);
+
+}  // namespace dot
+
+#endif  // DOT_CORE_SOLVE_SOLVERS_H_

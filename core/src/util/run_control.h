@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Cancellation, deadline and progress polling for long loops.
+#ifndef DOT_CORE_UTIL_RUN_CONTROL_H_
+#define DOT_CORE_UTIL_RUN_CONTROL_H_
+
+#include <chrono>
+#include <string>
+
+#include "dot/status.h"
+#include "dot/triangulate.h"
+
+namespace dot {
+
+inline double MsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now() - t0)
+      .count();
+}
+
+// Loops call Tick() every iteration; every `kStride` ticks it reads the clock,
+// checks the cancel flag and deadline, and reports progress at most every
+// 50 ms. Cheap enough for inner loops, frequent enough for a ~10 ms response.
+class RunTicker {
+ public:
+  RunTicker(const Control& control, Stage stage)
+      : control_(control), stage_(stage) {}
+
+  // Returns false once the run must stop; status() then says why.
+  bool Tick(double fraction_done = -1) {
+    if (++count_ < kStride) return true;
+    count_ = 0;
+    return Poll(fraction_done);
+  }
+  bool Poll(double fraction_done = -1) {
+    if (control_.cancel != nullptr && control_.cancel->load()) {
+      status_ = MakeStatus(StatusCode::kCancelled, "cancelled by the caller");
+      return false;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= control_.deadline) {
+      status_ = MakeStatus(
+          StatusCode::kDeadlineExceeded,
+          "deadline exceeded during " + std::string(StageName(stage_)));
+      return false;
+    }
+    if (control_.progress && fraction_done >= 0 &&
+        now - last_report_ >= std::chrono::milliseconds(50)) {
+      last_report_ = now;
+      control_.progress(stage_, fraction_done);
+    }
+    return true;
+  }
+  const Status& status() const { return status_; }
+
+ private:
+  static constexpr int kStride = 4096;
+  const Control& control_;
+  Stage stage_;
+  int count_ = 0;
+  std::chrono::steady_clock::time_point last_report_{};
+  Status status_;
+};
+
+}  // namespace dot
+
+#endif  // DOT_CORE_UTIL_RUN_CONTROL_H_

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// DOT1/DOT2 against brute-force enumeration inside the same search space,
+// GK1/GK2 against the unrestricted brute force, on random small polygons.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <set>
+
+#include "dot/dot.h"
+#include "fixtures/brute_force.h"
+#include "search_space/delaunay_cgal.h"
+#include "search_space/faces_of_tetrahedra.h"
+
+namespace dot {
+namespace {
+
+struct Mix {
+  const char* name;
+  MetricWeights w;
+};
+
+std::vector<Mix> MetricMixes() {
+  auto mk = [](const char* name,
+               std::initializer_list<std::pair<Metric, double>> ws) {
+    Mix m{name, {}};
+    for (auto [metric, weight] : ws) m.w[metric] = weight;
+    return m;
+  };
+  return {
+      mk("area", {{Metric::kArea, 1}}),
+      mk("perimeter", {{Metric::kPerimeter, 1}}),
+      mk("shape", {{Metric::kShape, 1}}),
+      mk("normal_deviation", {{Metric::kNormalDeviation, 1}}),
+      mk("squared_dihedral", {{Metric::kSquaredDihedral, 1}}),
+      mk("dihedral", {{Metric::kDihedral, 1}}),
+      mk("max_twist", {{Metric::kSquaredDihedral, -1}}),
+      mk("area+sqdihedral",
+         {{Metric::kArea, 1}, {Metric::kSquaredDihedral, 0.3}}),
+      mk("everything", {{Metric::kArea, 0.7},
+                        {Metric::kPerimeter, 0.2},
+                        {Metric::kNormalDeviation, 0.5},
+                        {Metric::kShape, 0.4},
+                        {Metric::kDihedral, -0.3},
+                        {Metric::kSquaredDihedral, 0.8}}),
+  };
+}
+
+Problem RandomProblem(std::mt19937_64& rng, int n) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Problem p;
+  for (int i = 0; i < n; ++i) {
+    p.vertices.push_back({u(rng), u(rng), u(rng)});
+    p.normals.push_back(Normalized(Vec3{u(rng), u(rng), 1.5}));
+  }
+  return p;
+}
+
+// TetGen's faces where it is built in: then the reference space does not
+// even share the backend with Triangulate (CGAL).
+std::set<Triangle> DelaunaySpace(const std::vector<Vec3>& v) {
+  std::vector<Triangle> faces;
+  if (TetgenAvailable()) {
+    Tetrahedralization tets;
+    EXPECT_TRUE(TetgenTetrahedralize(v, &tets).ok());
+    EXPECT_TRUE(FacesOfTetrahedra(tets, &faces).ok());
+  } else {
+    int64_t tetrahedra = 0;
+    EXPECT_TRUE(CgalDelaunayFaces(v, {}, &faces, &tetrahedra).ok());
+  }
+  return {faces.begin(), faces.end()};
+}
+
+std::set<Triangle> AllSpace(int n) {
+  std::set<Triangle> all;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c) all.insert({a, b, c});
+  return all;
+}
+
+void ExpectNear(double expected, double actual, const std::string& what) {
+  EXPECT_NEAR(expected, actual, 1e-9 * std::max(1.0, std::fabs(expected)))
+      << what;
+}
+
+TEST(OptimalityTest, DotAndGkEqualBruteForceOnRandomPolygons) {
+  std::mt19937_64 rng(20261122);
+  int solved = 0, no_triangulation = 0;
+  const auto mixes = MetricMixes();
+  for (int trial = 0; trial < 240; ++trial) {
+    const int n = 4 + trial % 6;  // 4..9
+    Problem p = RandomProblem(rng, n);
+    const std::set<Triangle> delaunay = DelaunaySpace(p.vertices);
+    const std::set<Triangle> all = AllSpace(n);
+    for (const Mix& mix : mixes) {
+      p.weights = mix.w;
+      const std::string what = "trial " + std::to_string(trial) +
+                               " n=" + std::to_string(n) + " metric " +
+                               mix.name;
+      const auto ref_dot =
+          testing::BruteForceMinimum(p.vertices, p.normals, delaunay, mix.w);
+      const auto ref_gk =
+          testing::BruteForceMinimum(p.vertices, p.normals, all, mix.w);
+
+      Options dot_options;
+      dot_options.space = SearchSpace::kDelaunay;
+      const Result dot = Triangulate(p, dot_options);
+      if (ref_dot.triangulations == 0) {
+        EXPECT_EQ(dot.status.code, StatusCode::kNoTriangulation) << what;
+        ++no_triangulation;
+      } else {
+        ASSERT_TRUE(dot.status.ok()) << what << ": " << dot.status.message;
+        ExpectNear(ref_dot.best, dot.total_cost, what + " (DOT)");
+        EXPECT_EQ(dot.solver,
+                  HasBiTriangleWeight(mix.w) ? Solver::kDot2 : Solver::kDot1);
+        const MeshReport report =
+            ValidateMesh(dot.vertices, dot.polygon, dot.triangles);
+        EXPECT_TRUE(report.valid()) << what << ": " << report.first_problem;
+        ++solved;
+      }
+
+      Options gk_options;
+      gk_options.space = SearchSpace::kAll;
+      const Result gk = Triangulate(p, gk_options);
+      ASSERT_TRUE(gk.status.ok()) << what << ": " << gk.status.message;
+      ExpectNear(ref_gk.best, gk.total_cost, what + " (GK)");
+      EXPECT_GE(gk.intersecting_pairs, 0) << what;
+      EXPECT_EQ(gk.solver,
+                HasBiTriangleWeight(mix.w) ? Solver::kGk2 : Solver::kGk1);
+      if (dot.status.ok()) {
+        EXPECT_GE(dot.total_cost, gk.total_cost - 1e-9) << what;
+      }
+    }
+  }
+  // The sample must exercise both outcomes to mean anything.
+  std::printf("solved %d, no triangulation %d\n", solved, no_triangulation);
+  EXPECT_GT(solved, 1000);
+  EXPECT_GT(no_triangulation, 10);
+}
+
+TEST(OptimalityTest, AutoFallsBackToAllWhenNoDelaunayTriangulation) {
+  std::mt19937_64 rng(7);
+  int fallbacks = 0;
+  for (int trial = 0; trial < 200 && fallbacks < 5; ++trial) {
+    Problem p = RandomProblem(rng, 8);
+    p.normals.clear();
+    Options delaunay_only;
+    delaunay_only.space = SearchSpace::kDelaunay;
+    if (Triangulate(p, delaunay_only).status.code !=
+        StatusCode::kNoTriangulation) {
+      continue;
+    }
+    ++fallbacks;
+    const Result r = Triangulate(p);  // kAuto
+    ASSERT_TRUE(r.status.ok()) << r.status.message;
+    EXPECT_EQ(r.space_used, SpaceUsed::kAll);
+    EXPECT_GE(r.intersecting_pairs, 0);
+    Options no_fallback;
+    no_fallback.all_space_max_vertices = 7;
+    EXPECT_EQ(Triangulate(p, no_fallback).status.code,
+              StatusCode::kNoTriangulation);
+  }
+  EXPECT_EQ(fallbacks, 5);
+}
+
+TEST(OptimalityTest, SameInputSameTriangles) {
+  const std::vector<Vec3> v = MakeCurve(Curve::kMonkey, 300);
+  Problem p{v, {}, {}};
+  p.weights[Metric::kSquaredDihedral] = 1;
+  const Result a = Triangulate(p), b = Triangulate(p);
+  ASSERT_TRUE(a.status.ok()) << a.status.message;
+  EXPECT_EQ(a.triangles, b.triangles);
+}
+
+}  // namespace
+}  // namespace dot
