@@ -151,6 +151,7 @@ int Tally::Print(double seconds, int concurrency, bool json) const {
 
 // What every worker of one run shares.
 struct LoadRun {
+  explicit LoadRun(const LoadFlags& f) : flags(f) {}
   const LoadFlags& flags;
   std::vector<PolygonData> polygons;
   std::vector<v1::TriangulateRequest> requests;
@@ -263,7 +264,7 @@ void StreamWorker(LoadRun& run, int s, int window) {
 }
 
 void RunLoad(const LoadFlags& f, Context* ctx) {
-  LoadRun run{f};
+  LoadRun run(f);
   std::string error;
   if (!LoadPolygons(f, &run.polygons, &error)) {
     std::cerr << "dotctl: " << error << "\n";

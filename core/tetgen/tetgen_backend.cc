@@ -10,8 +10,6 @@
 
 namespace dot {
 
-bool TetgenAvailable() { return true; }
-
 Status TetgenTetrahedralize(const std::vector<Vec3>& points,
                             Tetrahedralization* out_tets) {
   // The one piece of process-wide state in the library, forced by TetGen's.

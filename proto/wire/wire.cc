@@ -4,13 +4,7 @@
 #include <algorithm>
 
 namespace dot::wire {
-namespace {
-
-Status Invalid(std::string m) {
-  return MakeStatus(StatusCode::kInvalidArgument, std::move(m));
-}
-
-}  // namespace
+namespace {}  // namespace
 
 MetricValues FromWire(const v1::MetricWeights& w) {
   MetricValues v;
@@ -65,24 +59,26 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
                           Problem* problem, Options* options) {
   const auto& c = request.polygon().coordinates();
   if (c.size() % 3 != 0) {
-    return Invalid("polygon.coordinates has " + std::to_string(c.size()) +
-                   " values; expected 3 per vertex");
+    return InvalidArgument("polygon.coordinates has " +
+                           std::to_string(c.size()) +
+                           " values; expected 3 per vertex");
   }
   const auto& nm = request.polygon().normals();
   if (!nm.empty() && nm.size() != c.size()) {
-    return Invalid("polygon.normals has " + std::to_string(nm.size()) +
-                   " values; expected none or " + std::to_string(c.size()));
+    return InvalidArgument("polygon.normals has " + std::to_string(nm.size()) +
+                           " values; expected none or " +
+                           std::to_string(c.size()));
   }
   if (request.options().search_space() < 0 ||
       request.options().search_space() > v1::SEARCH_SPACE_ALL) {
-    return Invalid("options.search_space " +
-                   std::to_string(request.options().search_space()) +
-                   " is not a known search space");
+    return InvalidArgument("options.search_space " +
+                           std::to_string(request.options().search_space()) +
+                           " is not a known search space");
   }
   const v1::DelaunayBackend backend = request.options().delaunay_backend();
   if (!v1::DelaunayBackend_IsValid(backend)) {
-    return Invalid("options.delaunay_backend " + std::to_string(backend) +
-                   " is not a known backend");
+    return InvalidArgument("options.delaunay_backend " +
+                           std::to_string(backend) + " is not a known backend");
   }
   problem->vertices.clear();
   problem->normals.clear();
@@ -211,7 +207,7 @@ bool MeshChunker::Next(v1::MeshChunk* chunk) {
 
 Status MeshAssembler::Add(const v1::MeshChunk& chunk) {
   if (chunk.vertices_size() % 3 != 0 || chunk.triangles_size() % 3 != 0) {
-    return Invalid("mesh chunk with a partial vertex or triangle");
+    return InvalidArgument("mesh chunk with a partial vertex or triangle");
   }
   if (chunk.vertices_size() > 0) {
     if (!started_) {
@@ -219,9 +215,9 @@ Status MeshAssembler::Add(const v1::MeshChunk& chunk) {
       first_vertex_ = chunk.first_vertex();
     }
     if (chunk.first_vertex() != first_vertex_ + vertices_.size()) {
-      return Invalid("mesh chunk out of order: vertex " +
-                     std::to_string(chunk.first_vertex()) + " after " +
-                     std::to_string(first_vertex_ + vertices_.size()));
+      return InvalidArgument("mesh chunk out of order: vertex " +
+                             std::to_string(chunk.first_vertex()) + " after " +
+                             std::to_string(first_vertex_ + vertices_.size()));
     }
     for (int i = 0; i < chunk.vertices_size(); i += 3) {
       vertices_.push_back(
@@ -230,9 +226,9 @@ Status MeshAssembler::Add(const v1::MeshChunk& chunk) {
   }
   if (chunk.triangles_size() > 0) {
     if (chunk.first_triangle() != triangles_.size()) {
-      return Invalid("mesh chunk out of order: triangle " +
-                     std::to_string(chunk.first_triangle()) + " after " +
-                     std::to_string(triangles_.size()));
+      return InvalidArgument("mesh chunk out of order: triangle " +
+                             std::to_string(chunk.first_triangle()) +
+                             " after " + std::to_string(triangles_.size()));
     }
     for (int i = 0; i < chunk.triangles_size(); i += 3) {
       triangles_.push_back({static_cast<int32_t>(chunk.triangles(i)),
@@ -248,9 +244,10 @@ Status MeshAssembler::Finish(const v1::Summary& summary,
   mesh->vertices.clear();
   if (!started_) first_vertex_ = summary.vertex_count();
   if (first_vertex_ > input.size()) {
-    return Invalid("mesh starts at vertex " + std::to_string(first_vertex_) +
-                   " but only " + std::to_string(input.size()) +
-                   " input vertices are known");
+    return InvalidArgument("mesh starts at vertex " +
+                           std::to_string(first_vertex_) + " but only " +
+                           std::to_string(input.size()) +
+                           " input vertices are known");
   }
   mesh->vertices.assign(input.begin(), input.begin() + first_vertex_);
   mesh->vertices.insert(mesh->vertices.end(), vertices_.begin(),
@@ -258,16 +255,18 @@ Status MeshAssembler::Finish(const v1::Summary& summary,
   mesh->triangles = std::move(triangles_);
   if (mesh->vertices.size() != summary.vertex_count() ||
       mesh->triangles.size() != summary.triangle_count()) {
-    return Invalid("incomplete mesh: " + std::to_string(mesh->vertices.size()) +
-                   " vertices and " + std::to_string(mesh->triangles.size()) +
-                   " triangles received, summary says " +
-                   std::to_string(summary.vertex_count()) + " and " +
-                   std::to_string(summary.triangle_count()));
+    return InvalidArgument(
+        "incomplete mesh: " + std::to_string(mesh->vertices.size()) +
+        " vertices and " + std::to_string(mesh->triangles.size()) +
+        " triangles received, summary says " +
+        std::to_string(summary.vertex_count()) + " and " +
+        std::to_string(summary.triangle_count()));
   }
   for (const Triangle& t : mesh->triangles) {
     for (int32_t v : t) {
       if (v < 0 || static_cast<size_t>(v) >= mesh->vertices.size()) {
-        return Invalid("mesh triangle refers to vertex " + std::to_string(v));
+        return InvalidArgument("mesh triangle refers to vertex " +
+                               std::to_string(v));
       }
     }
   }

@@ -50,6 +50,7 @@ bool ReadAll(int fd, void* data, size_t len) {
 
 }  // namespace
 
+#if DOT_WITH_TETGEN
 int RunDelaunayHelper(int in_fd, int out_fd) {
   for (;;) {
     uint64_t n = 0;
@@ -84,6 +85,7 @@ int RunDelaunayHelper(int in_fd, int out_fd) {
     }
   }
 }
+#endif  // DOT_WITH_TETGEN
 
 DelaunayHelperPool::DelaunayHelperPool(HelperOptions options)
     : config_(std::move(options)), helpers_(std::max(1, config_.count)) {

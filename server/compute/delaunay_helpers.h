@@ -73,6 +73,7 @@ class DelaunayHelperPool {
 };
 
 // The helper process's main loop: serve requests from `in_fd` until EOF.
+// Only in builds with TetGen (DOT_WITH_TETGEN).
 int RunDelaunayHelper(int in_fd, int out_fd);
 
 }  // namespace dot::server

@@ -66,9 +66,6 @@ bool ParseDelaunayBackend(
     std::string_view name,
     DelaunayBackend* backend);  // "the Delaunay step", ...
 
-// False when the library was built without TetGen (DOT_WITH_TETGEN=OFF).
-bool TetgenAvailable();
-
 class SpaceCache;
 
 struct Problem {

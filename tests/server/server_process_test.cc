@@ -16,8 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include "fixtures/service_fixture.h"
 #include "remote_call.h"
-#include "service_fixture.h"
 
 extern char** environ;
 

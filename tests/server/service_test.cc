@@ -15,9 +15,9 @@
 #include <set>
 #include <thread>
 
+#include "fixtures/service_fixture.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "remote_call.h"
-#include "service_fixture.h"
 
 namespace dot {
 namespace {
@@ -109,6 +109,7 @@ TEST(ServiceTest, ResolvesComeFromTheCacheAndSaySo) {
   request.mutable_options()->set_no_cache(true);
   EXPECT_FALSE(call().summary.cache_hit());
   request.mutable_options()->set_no_cache(false);
+  if (!TetgenAvailable()) return;
   request.mutable_options()->set_delaunay_backend(v1::DELAUNAY_BACKEND_TETGEN);
   const CallOutcome tetgen = call();
   ExpectSameAsLocal(request, tetgen);
@@ -312,6 +313,7 @@ void ExpectCancelFreesTheWorker(const server::ServerConfig& config,
 TEST(ServiceTest, CancelFreesTheWorkerForTheNextRequest) {
   for (DelaunayBackend backend :
        {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
+    if (!TetgenAvailable() && backend == DelaunayBackend::kTetgen) continue;
     SCOPED_TRACE(DelaunayBackendName(backend));
     auto config = testing::LoopbackConfig();
     config.pool.threads = 1;
@@ -459,6 +461,7 @@ TEST(ServiceTest, DrainCancelsWorkThatOutlivesTheGracePeriod) {
 }
 
 TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
+  if (!TetgenAvailable()) GTEST_SKIP() << "built without TetGen";
   auto config = testing::LoopbackConfig();
   config.pool.threads = 1;
   config.helpers.count = 1;
@@ -485,6 +488,7 @@ TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
 }
 
 TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
+  if (!TetgenAvailable()) GTEST_SKIP() << "built without TetGen";
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "ASan builds cannot cap a helper's address space";
 #endif

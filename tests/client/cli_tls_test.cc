@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fixtures/service_fixture.h"
 #include "remote_call.h"
 #include "request_flags.h"
-#include "service_fixture.h"
 
 namespace dot {
 namespace {
