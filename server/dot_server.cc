@@ -105,8 +105,7 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
 }
 
 void DotServer::Drain(std::chrono::milliseconds grace) {
-  if (drained_) return;
-  drained_ = true;
+  if (drained_.exchange(true)) return;
   server_->GetHealthCheckService()->SetServingStatus(false);
   jobs_->StartDraining();
   const auto until = std::chrono::steady_clock::now() + grace;

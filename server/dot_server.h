@@ -7,6 +7,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -48,7 +49,7 @@ class DotServer {
   std::unique_ptr<TriangulatorService> service_;
   std::unique_ptr<grpc::Server> server_;
   int port_ = 0;
-  bool drained_ = false;
+  std::atomic<bool> drained_{false};
 };
 
 }  // namespace dot::server

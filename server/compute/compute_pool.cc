@@ -35,12 +35,18 @@ bool ComputePool::TryRunHere(const std::function<void()>& task) {
     if (stopping_ || !queue_.empty() || busy_ >= threads()) return false;
     ++busy_;
   }
+  // The slot is given back however the task ends.
+  struct Release {
+    ComputePool* pool;
+    ~Release() {
+      {
+        std::lock_guard<std::mutex> lock(pool->mu_);
+        --pool->busy_;
+      }
+      pool->cv_.notify_one();  // the slot may be what a queued task waits for
+    }
+  } release{this};
   task();
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    --busy_;
-  }
-  cv_.notify_one();  // the slot may be what a queued task waits for
   return true;
 }
 
@@ -59,8 +65,10 @@ void ComputePool::Work() {
     std::function<void()> task;
     {
       std::unique_lock<std::mutex> lock(mu_);
+      // Queued work runs within the slot bound even while stopping.
       cv_.wait(lock, [this] {
-        return stopping_ || (!queue_.empty() && busy_ < threads());
+        return (!queue_.empty() && busy_ < threads()) ||
+               (stopping_ && queue_.empty());
       });
       if (queue_.empty()) return;  // stopping and drained
       task = std::move(queue_.front());

@@ -41,7 +41,7 @@ void BatchReactor::OnReadDone(bool ok) {
         item.refused = {grpc::StatusCode::CANCELLED, "cancelled by the client"};
       }
       if (item.refused.ok()) {
-        job->on_done = [this, job] { OnJobDone(job); };
+        job->on_done = [this, job] { Pump(job); };
         running_.insert(job);
         start = true;
       } else {
@@ -57,19 +57,6 @@ void BatchReactor::OnReadDone(bool ok) {
       refused.refused = runner_->Overloaded();
       outbox_.push_back(std::move(refused));
     }
-  }
-  Pump();
-}
-
-void BatchReactor::OnJobDone(const std::shared_ptr<Job>& job) {
-  const ServiceOptions& o = runner_->options();
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    running_.erase(job);
-    Item item;
-    item.job = job;
-    item.response.emplace(job, o.chunk_bytes, o.max_compute_ms);
-    outbox_.push_back(std::move(item));
   }
   Pump();
 }
@@ -108,52 +95,65 @@ void BatchReactor::Stop(const grpc::Status& status) {
   for (const auto& job : running_) job->cancel = true;
 }
 
-bool BatchReactor::NextMessage(std::vector<Answer>* answered) {
+bool BatchReactor::TakeNextItem(std::vector<Answer>* answered) {
   for (;;) {
     if (!current_) {
       if (outbox_.empty()) return false;
       current_ = std::move(outbox_.front());
       outbox_.pop_front();
     }
-    Item& item = *current_;
-    if (stopped_) {  // nobody to write to
-      answered->emplace_back(item.job, final_status_);
-      current_.reset();
-      continue;
-    }
-    const grpc::Status& error =
-        !item.refused.ok() ? item.refused : item.response->status();
-    if (!error.ok()) {
-      SetError(item.job->id, error, &message_);
-      item.written = true;
-      return true;
-    }
-    item.response->Next(&message_);
-    item.written = item.response->done();
-    return true;
+    if (!stopped_) return true;
+    answered->emplace_back(current_->job, final_status_);  // nobody to tell
+    current_.reset();
   }
 }
 
-void BatchReactor::Pump() {
+void BatchReactor::WriteCurrent() {
+  Item& item = *current_;
+  if (item.refused.ok() && !item.response) {
+    const ServiceOptions& o = runner_->options();
+    item.response.emplace(item.job, o.chunk_bytes, o.max_compute_ms);
+  }
+  const grpc::Status& error =
+      !item.refused.ok() ? item.refused : item.response->status();
+  if (!error.ok()) {
+    SetError(item.job->id, error, &message_);
+    item.written = true;
+  } else {
+    item.response->Next(&message_);
+    item.written = item.response->done();
+  }
+  StartWrite(&message_);
+}
+
+void BatchReactor::Pump(std::shared_ptr<Job> finished) {
+  JobRunner* const runner = runner_;  // `this` may be gone after unlocking
   bool start_read = false, start_write = false, finish = false;
   std::vector<Answer> answered;
   {
     std::lock_guard<std::mutex> lock(mu_);
+    if (finished) {
+      running_.erase(finished);
+      Item item;
+      item.job = std::move(finished);
+      outbox_.push_back(std::move(item));
+    }
     if (finished_) return;
     const size_t pending =
         running_.size() + outbox_.size() + (current_ ? 1 : 0);
     if (!reading_ && !reads_done_ && !stopped_ && pending < window_) {
       reading_ = start_read = true;
     }
-    if (!writing_ && NextMessage(&answered)) writing_ = start_write = true;
+    if (!writing_ && TakeNextItem(&answered)) writing_ = start_write = true;
     if (!reading_ && !writing_ && running_.empty() && outbox_.empty() &&
         !current_ && (reads_done_ || stopped_)) {
       finished_ = finish = true;
     }
   }
-  for (const Answer& a : answered) runner_->Answered(*a.first, a.second);
+  for (const Answer& a : answered) runner->Answered(*a.first, a.second);
+  // A read or write in flight keeps the stream (and this) alive.
   if (start_read) StartRead(&request_);
-  if (start_write) StartWrite(&message_);
+  if (start_write) WriteCurrent();
   // The last act: OnDone, which deletes this, may follow at once.
   if (finish) Finish(final_status_);
 }

@@ -48,14 +48,19 @@ class BatchReactor final
   };
   using Answer = std::pair<std::shared_ptr<Job>, grpc::Status>;
 
-  void OnJobDone(const std::shared_ptr<Job>& job);
   // Starts whatever can start now (a read, a write) or finishes the RPC.
   // Every reaction ends by calling it; the decisions are taken under mu_
-  // and acted on after it is released.
-  void Pump();
-  // Under mu_: fills message_ with the next message to write; false when
-  // nothing is ready. Items dropped after a cancel go to `answered`.
-  bool NextMessage(std::vector<Answer>* answered);
+  // and acted on after it is released. `finished`, a job that has just
+  // run, is filed in the same critical section: a compute thread must not
+  // touch the reactor after it lets go of mu_, since gRPC may then finish
+  // the stream and delete it (only gRPC's own reactions hold OnDone back).
+  void Pump(std::shared_ptr<Job> finished = nullptr);
+  // Under mu_, when no write is in flight: takes the next item to write
+  // into current_ (dropping items once stopped); false when none is ready.
+  bool TakeNextItem(std::vector<Answer>* answered);
+  // With the write right (writing_): fills message_ from current_ and
+  // starts the write. The mesh is serialized outside mu_.
+  void WriteCurrent();
   void Stop(const grpc::Status& status);  // under mu_: cancel or broken
 
   JobRunner* const runner_;

@@ -91,15 +91,20 @@ std::shared_ptr<Job> JobRunner::Admit(
   job->options.all_space_max_vertices = options_.solve.all_space_max_vertices;
   SetDeadline(options_, request.options().time_budget_ms(), client_deadline,
               job.get());
-  Track(job.get());
+  if (!Track(job.get())) {
+    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          "server is shutting down; retry on another replica");
+  }
   return job;
 }
 
-void JobRunner::Track(Job* job) {
+bool JobRunner::Track(Job* job) {
   std::lock_guard<std::mutex> lock(jobs_mu_);
+  if (draining_) return false;
   jobs_.insert(job);
   ++inflight_;
   metrics_->inflight().Set(inflight_);
+  return true;
 }
 
 void JobRunner::Untrack(const Job* job) {

@@ -78,7 +78,10 @@ class JobRunner {
   void Answered(const Job& job, const grpc::Status& status);
 
   // New jobs are refused with UNAVAILABLE from now on.
-  void StartDraining() { draining_ = true; }
+  void StartDraining() {
+    std::lock_guard<std::mutex> lock(jobs_mu_);
+    draining_ = true;
+  }
   // Cancels every admitted job; their RPCs answer UNAVAILABLE.
   void CancelAllForDrain();
   int inflight() const { return inflight_; }
@@ -89,7 +92,9 @@ class JobRunner {
 
  private:
   void Run(Job& job);
-  void Track(Job* job);
+  // False when draining began: the job is then refused, not tracked, so a
+  // drain's CancelAllForDrain never misses a job admitted after it began.
+  bool Track(Job* job);
   void Untrack(const Job* job);
 
   const ServiceOptions& options_;

@@ -6,7 +6,7 @@ namespace dot::server {
 TriangulateReactor::TriangulateReactor(JobRunner* runner,
                                        grpc::CallbackServerContext* context,
                                        const v1::TriangulateRequest& request)
-    : runner_(runner) {
+    : runner_(runner), context_(context) {
   grpc::Status refused;
   job_ = runner_->Admit(request, context->deadline(), "Triangulate", &refused);
   if (!refused.ok()) {
@@ -108,6 +108,10 @@ void TriangulateReactor::OnCancel() {
 }
 
 void TriangulateReactor::OnDone() {
+  // StartWriteAndFinish reports no write failure: ask the context.
+  if (final_status_.ok() && context_->IsCancelled()) {
+    final_status_ = {grpc::StatusCode::CANCELLED, "the client went away"};
+  }
   runner_->Answered(*job_, final_status_);
   delete this;  // gRPC's callback API: a reactor owns itself until OnDone
 }

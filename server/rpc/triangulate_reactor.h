@@ -38,6 +38,7 @@ class TriangulateReactor final
   void FinishWith(const grpc::Status& status);
 
   JobRunner* const runner_;
+  grpc::CallbackServerContext* const context_;
   std::shared_ptr<Job> job_;
   grpc::Status final_status_;
 

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <future>
 #include <iostream>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -384,6 +385,39 @@ TEST(ServiceTest, IdleBatchStreamsCostNoThreads) {
   EXPECT_LT(rss_after - rss_before, 50);  // client and server together
   for (auto& c : contexts) c->TryCancel();
   for (auto& st : streams) st->Finish();
+}
+
+// Streams cancelled at random moments, some while their last polygon is
+// being solved: every stream ends, every admitted polygon is answered once
+// (in-flight returns to 0), and nothing touches a finished reactor (ASan).
+TEST(ServiceTest, BatchStreamsCancelledMidFlightEndCleanly) {
+  auto s = StartServer(testing::LoopbackConfig());
+  std::mt19937 rng(7);
+  for (int i = 0; i < 40; ++i) {
+    grpc::ClientContext context;
+    auto stream = s.stub->TriangulateBatch(&context);
+    for (int k = 0; k < 3; ++k) {
+      auto r =
+          CurveRequest(Curve::kSpiral, 200 + 50 * k,
+                       Weights(Metric::kSquaredDihedral), std::to_string(k));
+      if (!stream->Write(r)) break;
+    }
+    if (i % 2 == 0) stream->WritesDone();
+    std::this_thread::sleep_for(std::chrono::microseconds(rng() % 8000));
+    context.TryCancel();
+    v1::TriangulateResponse msg;
+    while (stream->Read(&msg)) {
+    }
+    const grpc::StatusCode code = stream->Finish().error_code();
+    EXPECT_TRUE(code == grpc::StatusCode::CANCELLED ||
+                code == grpc::StatusCode::OK)
+        << code;
+  }
+  const auto until = Clock::now() + std::chrono::seconds(10);
+  while (s.server->jobs().inflight() > 0 && Clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(s.server->jobs().inflight(), 0);
 }
 
 TEST(ServiceTest, OverloadIsRefusedAtOnce) {
