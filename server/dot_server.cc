@@ -73,6 +73,9 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
   grpc::ServerBuilder builder;
   builder.AddListeningPort(c.listen, credentials, &s->port_);
   builder.RegisterService(s->service_.get());
+  // One server per port: without this, gRPC's SO_REUSEPORT lets a second
+  // server start on a taken port and silently take half the calls.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.SetMaxReceiveMessageSize(c.service.max_message_bytes);
   builder.SetMaxSendMessageSize(c.service.max_message_bytes);
   // Keepalive: notice dead clients; let clients ping idle connections.
@@ -94,7 +97,10 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
     *error = "cannot listen on " + c.listen;
     return nullptr;
   }
+  // Health answers for the whole server ("") and by service name.
   s->server_->GetHealthCheckService()->SetServingStatus(true);
+  s->server_->GetHealthCheckService()->SetServingStatus(
+      v1::Triangulator::service_full_name(), true);
   spdlog::info(
       "dot-server listening on {} (port {}), {} compute threads, queue {}, "
       "{} Delaunay helpers, metrics {}",

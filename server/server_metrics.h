@@ -11,6 +11,7 @@
 #include <prometheus/registry.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "dot/space_cache.h"
@@ -18,8 +19,12 @@
 namespace dot::server {
 
 struct MetricsOptions {
-  int port = 9090;               // Prometheus /metrics over HTTP; 0: off
-  std::string bind = "0.0.0.0";  // address it listens on
+  int port = 9090;  // Prometheus /metrics over HTTP; 0: off
+  // Address it listens on: loopback unless opened on purpose (the compose
+  // and Kubernetes manifests set DOT_METRICS_BIND=0.0.0.0).
+  std::string bind = "127.0.0.1";
+  int threads = 4;                // HTTP threads, apart from gRPC's
+  int request_timeout_ms = 2000;  // a silent scraper is dropped after this
 };
 
 class ServerMetrics {
@@ -32,7 +37,8 @@ class ServerMetrics {
   prometheus::Gauge& queue_depth() { return *queue_depth_; }
   prometheus::Gauge& inflight() { return *inflight_; }
   prometheus::Gauge& busy_threads() { return *busy_threads_; }
-  prometheus::Gauge& helper_starts() { return *helper_starts_; }
+  // The helper pool's running total of starts; counted as a delta.
+  void HelperStarts(int64_t total);
   // One search-space cache lookup, and the cache's size after it.
   void CacheLookup(bool hit, const SpaceCache::Counters& counters);
   std::string Scrape() const;  // the text format, for tests and logs
@@ -45,7 +51,9 @@ class ServerMetrics {
   prometheus::Gauge* queue_depth_;
   prometheus::Gauge* inflight_;
   prometheus::Gauge* busy_threads_;
-  prometheus::Gauge* helper_starts_;
+  prometheus::Counter* helper_starts_;
+  std::mutex helper_mu_;
+  int64_t helper_starts_seen_ = 0;
   prometheus::Counter* cache_hits_;
   prometheus::Counter* cache_misses_;
   prometheus::Gauge* cache_bytes_;

@@ -141,6 +141,15 @@ Status DelaunayHelperPool::Spawn(Helper* h) {
   return OkStatus();
 }
 
+bool DelaunayHelperPool::Reap(Helper* h, int* status) {
+  if (h->pid <= 0 || ::waitpid(h->pid, status, WNOHANG) != h->pid) {
+    return false;
+  }
+  h->pid = -1;
+  Kill(h);  // closes the pipes
+  return true;
+}
+
 int DelaunayHelperPool::Kill(Helper* h) {
   int status = 0;
   if (h->pid > 0) {
@@ -175,6 +184,10 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
     h->busy = true;
   }
   Status s = OkStatus();
+  // A helper that died while idle (killed from outside, or gone between
+  // requests) has nothing to do with this request: replace it.
+  int idle_status = 0;
+  Reap(h, &idle_status);
   if (h->pid < 0) {
     s = Spawn(h);
     if (s.ok()) ++starts_;
@@ -192,19 +205,38 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
                                     Tetrahedralization* out,
                                     const std::atomic<bool>* cancel,
                                     Clock::time_point deadline) {
+  // The helper stopped answering: say how it ended, as the kernel tells it
+  // (we kill it only if it has not ended by itself within ~50 ms).
   auto died = [&](const std::string& what) {
-    const int status = Kill(h);
-    std::string why = what;
-    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL) {
-      why += " (signal " + std::to_string(WTERMSIG(status)) + ", " +
-             strsignal(WTERMSIG(status)) + ")";
+    int status = 0;
+    bool ended = false;
+    for (int i = 0; i < 50 && !ended; ++i) {
+      ended = Reap(h, &status);
+      if (!ended) ::usleep(1000);
     }
-    return Internal(why);
+    if (!ended) {
+      Kill(h);
+      return Internal("the Delaunay helper process stopped answering (" + what +
+                      ") and was restarted");
+    }
+    std::string how;
+    if (WIFEXITED(status)) {
+      how = "exited with code " + std::to_string(WEXITSTATUS(status));
+    } else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
+      how =
+          "was killed (SIGKILL: out of memory, or stopped from outside; "
+          "retrying may succeed)";
+    } else if (WIFSIGNALED(status)) {
+      how = "crashed on this input (signal " +
+            std::to_string(WTERMSIG(status)) + ", " +
+            strsignal(WTERMSIG(status)) + ")";
+    }
+    return Internal("the Delaunay helper process " + how);
   };
   const uint64_t n = points.size();
   if (!WriteAll(h->to_child, &n, sizeof n) ||
       !WriteAll(h->to_child, points.data(), n * sizeof(Vec3))) {
-    return died("the Delaunay helper process died");
+    return died("writing the points failed");
   }
   // Reads `len` bytes, polling so that a cancel or deadline kills the helper.
   auto read = [&](void* data, size_t len) -> Status {
@@ -221,12 +253,12 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
       }
       pollfd pfd{h->from_child, POLLIN, 0};
       const int ready = ::poll(&pfd, 1, 10);
-      if (ready < 0 && errno != EINTR) return died("poll failed");
+      if (ready < 0 && errno != EINTR) return died("poll failed");  // NOLINT
       if (ready <= 0) continue;
       const ssize_t r = ::read(h->from_child, p, len);
       if (r < 0 && errno == EINTR) continue;
       if (r <= 0) {
-        return died("the Delaunay helper process died on this input");
+        return died("its pipe closed");
       }
       p += r;
       len -= static_cast<size_t>(r);

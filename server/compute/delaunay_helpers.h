@@ -61,6 +61,9 @@ class DelaunayHelperPool {
   };
   Status Spawn(Helper* h);
   int Kill(Helper* h);  // returns the wait status
+  // True (with the wait status) when the helper has ended by itself; it is
+  // then cleaned up, ready to be spawned again.
+  bool Reap(Helper* h, int* status);
   Status Exchange(Helper* h, const std::vector<Vec3>& points,
                   Tetrahedralization* out, const std::atomic<bool>* cancel,
                   std::chrono::steady_clock::time_point deadline);

@@ -157,7 +157,7 @@ void JobRunner::Run(Job& job) {
                                             Tetrahedralization* out) {
         const Status s =
             helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline);
-        metrics_->helper_starts().Set(static_cast<double>(helpers_->starts()));
+        metrics_->HelperStarts(helpers_->starts());
         return s;
       };
     }

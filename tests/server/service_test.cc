@@ -513,12 +513,47 @@ TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
   ASSERT_EQ(::kill(pids[0], SIGSEGV), 0);
   const CallOutcome crashed = victim.get();
   EXPECT_EQ(crashed.status.error_code(), grpc::StatusCode::INTERNAL);
-  EXPECT_NE(crashed.status.error_message().find("helper process died"),
+  EXPECT_NE(crashed.status.error_message().find(
+                "helper process crashed on this input (signal 11"),
             std::string::npos)
       << crashed.status.error_message();
   const auto after = CurveRequest(Curve::kMobius, 300, Weights(Metric::kArea));
   ExpectSameAsLocal(after, TriangulateRemote(*s.stub, after, Input(after), 30));
   EXPECT_EQ(s.server->helpers()->starts(), 2);
+}
+
+// A helper killed while idle is replaced before the next request uses it;
+// one killed mid-request is reported as killed, not as crashing on it.
+TEST(ServiceTest, HelperKilledWhileIdleIsReplacedSilently) {
+  if (!TetgenAvailable()) GTEST_SKIP() << "built without TetGen";
+  auto config = testing::LoopbackConfig();
+  config.pool.threads = 1;
+  config.helpers.count = 1;
+  config.service.solve.delaunay = DelaunayBackend::kTetgen;
+  auto s = StartServer(config);
+  const auto warm = CurveRequest(Curve::kMonkey, 50, Weights(Metric::kArea));
+  ASSERT_TRUE(TriangulateRemote(*s.stub, warm, Input(warm), 30).status.ok());
+  auto pids = s.server->helpers()->Pids();
+  ASSERT_EQ(pids.size(), 1u);
+  ASSERT_EQ(::kill(pids[0], SIGKILL), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto next = CurveRequest(Curve::kMobius, 300, Weights(Metric::kArea));
+  ExpectSameAsLocal(next, TriangulateRemote(*s.stub, next, Input(next), 30));
+  EXPECT_EQ(s.server->helpers()->starts(), 2);
+
+  pids = s.server->helpers()->Pids();
+  ASSERT_EQ(pids.size(), 1u);
+  auto big = CurveRequest(Curve::kMoment, 3000, Weights(Metric::kArea));
+  auto victim = std::async(std::launch::async, [&] {
+    return TriangulateRemote(*s.stub, big, Input(big), 60);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // in TetGen
+  ASSERT_EQ(::kill(pids[0], SIGKILL), 0);
+  const grpc::Status killed = victim.get().status;
+  EXPECT_EQ(killed.error_code(), grpc::StatusCode::INTERNAL);
+  EXPECT_NE(killed.error_message().find("was killed (SIGKILL"),
+            std::string::npos)
+      << killed.error_message();
 }
 
 TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {

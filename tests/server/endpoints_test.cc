@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The server's endpoints besides the RPCs: health by service name, one
+// server per port, and a /metrics endpoint that slow clients cannot hold.
+#include <arpa/inet.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "fixtures/service_fixture.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+
+namespace dot {
+namespace {
+
+using grpc::health::v1::HealthCheckResponse;
+using Clock = std::chrono::steady_clock;
+
+int FreeLoopbackPort() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof addr;
+  ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  ::close(fd);
+  return ntohs(addr.sin_port);
+}
+
+// A TCP connection to 127.0.0.1:port; -1 when refused.
+int Connect(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+TEST(EndpointsTest, HealthAnswersForTheServiceName) {
+  auto s = testing::StartServer(testing::LoopbackConfig());
+  auto health = grpc::health::v1::Health::NewStub(s.channel);
+  auto check = [&](const std::string& service) {
+    grpc::ClientContext c;
+    grpc::health::v1::HealthCheckRequest request;
+    request.set_service(service);
+    HealthCheckResponse r;
+    const grpc::Status st = health->Check(&c, request, &r);
+    EXPECT_TRUE(st.ok()) << service << ": " << st.error_message();
+    return r.status();
+  };
+  EXPECT_EQ(check(""), HealthCheckResponse::SERVING);
+  EXPECT_EQ(check("dot.v1.Triangulator"), HealthCheckResponse::SERVING);
+  s.server->Drain(std::chrono::milliseconds(0));
+}
+
+TEST(EndpointsTest, SecondServerOnTheSamePortIsRefused) {
+  auto first = testing::StartServer(testing::LoopbackConfig());
+  auto config = testing::LoopbackConfig();
+  config.listen = "127.0.0.1:" + std::to_string(first.server->port());
+  std::string error;
+  auto second = server::DotServer::Start(config, &error);
+  EXPECT_EQ(second, nullptr);
+  EXPECT_NE(error.find("cannot listen"), std::string::npos) << error;
+}
+
+TEST(EndpointsTest, MetricsAnswerWhileSlowClientsHoldConnections) {
+  auto config = testing::LoopbackConfig();
+  config.metrics.port = FreeLoopbackPort();
+  auto s = testing::StartServer(config);
+  ASSERT_TRUE(s.server);
+  EXPECT_EQ(config.metrics.bind, "127.0.0.1");  // the default
+  // Slow clients: a partial request line, then silence.
+  std::vector<int> slow;
+  for (int i = 0; i < 4; ++i) {  // as many as the endpoint has threads
+    const int fd = Connect(config.metrics.port);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, "GET /met", 8), 8);
+    slow.push_back(fd);
+  }
+  const auto t0 = Clock::now();
+  std::string body;
+  const int fd = Connect(config.metrics.port);
+  ASSERT_GE(fd, 0);
+  const std::string get = "GET /metrics HTTP/1.0\r\n\r\n";
+  ASSERT_EQ(::write(fd, get.data(), get.size()),
+            static_cast<ssize_t>(get.size()));
+  char buf[4096];
+  ssize_t got;
+  while ((got = ::read(fd, buf, sizeof buf)) > 0) body.append(buf, got);
+  ::close(fd);
+  const double seconds =
+      std::chrono::duration<double>(Clock::now() - t0).count();
+  EXPECT_LT(seconds, 4.0);  // before: blocked for as long as they stayed
+  EXPECT_NE(body.find("dot_delaunay_helper_starts_total"), std::string::npos)
+      << body.substr(0, 300);
+  for (int f : slow) ::close(f);
+}
+
+}  // namespace
+}  // namespace dot
