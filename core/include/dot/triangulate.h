@@ -74,26 +74,53 @@ struct Problem {
   MetricWeights weights;       // all zero means area alone
 };
 
+// How Triangulate searches. A default-constructed Options is the
+// recommended configuration; every field, its meaning and default:
+//
+//  space                 Which candidate triangles to search (see above).
+//                        Default: SearchSpace::kAuto.
+//  delaunay              3D Delaunay backend. Default: DelaunayBackend::kCgal
+//                        (faster than TetGen, re-entrant, cancellable
+//                        mid-way, and the only one when !TetgenAvailable()).
+//  protect_edges         Split polygon edges on no Delaunay triangle at their
+//                        midpoints until every polygon edge is on one (paper,
+//                        Lemma 4.3). Default: false.
+//  max_inserted_vertices Most vertices edge protection may insert; beyond,
+//                        kResourceExhausted. Default: 100000.
+//  all_space_max_vertices kAuto falls back to kAll (when no Delaunay
+//                        triangulation exists) only up to this many vertices.
+//                        Default: 40.
+//  all_space_hard_limit  An explicit kAll is refused above this many
+//                        vertices (its tables grow as n^3). Default: 400.
+//  planar_tolerance      A polygon is planar when every vertex is within this
+//                        fraction of its bounding-box diagonal from its
+//                        least-squares plane. Default: 1e-6.
+//  memory_budget_bytes   Refuse (kResourceExhausted) a request whose
+//                        estimated table memory exceeds this, before
+//                        allocating. Default: 2 GiB (int64_t{2} << 30).
+//  validate_output       Count self-intersecting triangle pairs of the output
+//                        (Result::intersecting_pairs; always done for kAll
+//                        results, which may self-intersect). Default: false.
+//  parallel_delaunay_min_points
+//                        The CGAL backend inserts points on several threads
+//                        from this many polygon vertices on; below, threads
+//                        cost more than they save. The result is the same
+//                        either way (CGAL's Delaunay is unique under symbolic
+//                        perturbation). Default: 20000.
+//  delaunay_threads      Threads of that parallel insertion: 0 all cores, 1
+//                        sequential always. Default: 0.
 struct Options {
   SearchSpace space = SearchSpace::kAuto;
-  // CGAL is the default: faster, re-entrant, and cancellable mid-way.
   DelaunayBackend delaunay = DelaunayBackend::kCgal;
-  // Split non-Delaunay polygon edges at their midpoints until every polygon
-  // edge is on a Delaunay triangle (paper, Lemma 4.3).
   bool protect_edges = false;
-  int max_inserted_vertices = 100000;  // cap for edge protection
-  // kAuto falls back to kAll only up to this many vertices; an explicit kAll
-  // is refused above all_space_hard_limit.
+  int max_inserted_vertices = 100000;
   int all_space_max_vertices = 40;
   int all_space_hard_limit = 400;
-  // A polygon is planar when every vertex is within this fraction of its
-  // bounding-box diagonal from its least-squares plane.
   double planar_tolerance = 1e-6;
-  // Refuse requests whose estimated table memory exceeds this many bytes.
-  int64_t memory_budget_bytes = int64_t{4} << 30;
-  // Count self-intersecting triangle pairs of the output (always done for
-  // kAll results, whose output may self-intersect).
+  int64_t memory_budget_bytes = int64_t{2} << 30;
   bool validate_output = false;
+  int parallel_delaunay_min_points = 20000;
+  int delaunay_threads = 0;
 };
 
 // A 3D Delaunay tetrahedralization: vertex-index quadruples, and for each

@@ -81,6 +81,12 @@ Status CheckProblem(const Problem& problem, const Options& options) {
   if (options.delaunay == DelaunayBackend::kTetgen && !TetgenAvailable()) {
     return InvalidArgument(kNoTetgenMessage);
   }
+  if (options.delaunay_threads < 0) {
+    return InvalidArgument("delaunay_threads must be >= 0 (0: all cores)");
+  }
+  if (options.parallel_delaunay_min_points < 0) {
+    return InvalidArgument("parallel_delaunay_min_points must be >= 0");
+  }
   if (options.planar_tolerance < 0 ||
       !std::isfinite(options.planar_tolerance)) {
     return InvalidArgument("planar tolerance must be a finite number >= 0");

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // Rejects malformed problems before any work, naming the offending index and
 // value: too few vertices, non-finite or duplicate vertices, bad normals or
-// weights, collinear polygons.
+// weights, collinear polygons; and options out of range or naming a backend
+// this build does not have.
 #ifndef DOT_CORE_POLYGON_INPUT_CHECK_H_
 #define DOT_CORE_POLYGON_INPUT_CHECK_H_
 

@@ -22,11 +22,11 @@ std::vector<int32_t> MissingPolygonEdges(int32_t n,
   return missing;
 }
 
-Status Faces(DelaunayBackend backend, const Control& control,
+Status Faces(const Options& options, const Control& control,
              const std::vector<Vec3>& points, std::vector<Triangle>* faces,
              int64_t* tetrahedra) {
-  if (backend == DelaunayBackend::kCgal) {
-    return CgalDelaunayFaces(points, control, faces, tetrahedra);
+  if (options.delaunay == DelaunayBackend::kCgal) {
+    return CgalDelaunayFaces(points, options, control, faces, tetrahedra);
   }
   Tetrahedralization tets;
   Status s = control.tetrahedralize ? control.tetrahedralize(points, &tets)
@@ -53,8 +53,8 @@ Status Delaunay3dFaces(const Options& options, const Control& control,
   const int max_inserted = options.max_inserted_vertices;
   RunTicker ticker(control, Stage::kDelaunay);
   for (;;) {
-    Status s = Faces(options.delaunay, control, loop->Points(), faces,
-                     &stats->tetrahedra);
+    Status s =
+        Faces(options, control, loop->Points(), faces, &stats->tetrahedra);
     if (!s.ok()) return s;
     if (!options.protect_edges) break;
     const std::vector<int32_t> missing =

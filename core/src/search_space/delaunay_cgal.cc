@@ -1,18 +1,30 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// The CGAL Delaunay backend: exact predicates, re-entrant, and inserted one
-// point at a time in spatial-sort order (what CGAL's range insert does), so
-// cancel and deadline are honoured inside the tetrahedralization too.
+// The CGAL Delaunay backend. Points are inserted in spatial-sort order (what
+// CGAL's range insert does) but by our own loop, so cancel and deadline are
+// honoured inside the tetrahedralization too. Large inputs are inserted by
+// several threads as CGAL's parallel range insert does (a lock grid over the
+// bounding box; a thread retries a point whose conflict zone another thread
+// holds), in batches between which the calling thread polls and reports
+// progress.
 #include "search_space/delaunay_cgal.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <new>
+#include <string>
 #include <utility>
 
 #include "util/run_control.h"
@@ -22,12 +34,25 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int32_t, Kernel>;
-using DataStructure = CGAL::Triangulation_data_structure_3<VertexBase>;
-using Delaunay3 = CGAL::Delaunay_triangulation_3<Kernel, DataStructure>;
+using SequentialDelaunay = CGAL::Delaunay_triangulation_3<
+    Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
+using ParallelDelaunay = CGAL::Delaunay_triangulation_3<
+    Kernel, CGAL::Triangulation_data_structure_3<
+                VertexBase, CGAL::Delaunay_triangulation_cell_base_3<Kernel>,
+                CGAL::Parallel_tag>>;
 using IndexedPoint = std::pair<Kernel::Point_3, int32_t>;
 
-Status Triangulate3(const std::vector<Vec3>& points, const Control& control,
-                    Delaunay3* dt) {
+// Points inserted by the calling thread alone before threads join: they
+// need a 3D triangulation to lock regions of, and CGAL does the same.
+constexpr size_t kSequentialPoints = 500;
+// Parallel batches grow from the first to the largest size: polls between
+// batches stay frequent while the triangulation is small.
+constexpr size_t kFirstBatch = 1000;
+constexpr size_t kLargestBatch = 32000;
+// Workers check for cancel and deadline themselves every this many points.
+constexpr size_t kWorkerPollStride = 64;
+
+std::vector<IndexedPoint> SpatiallySorted(const std::vector<Vec3>& points) {
   std::vector<IndexedPoint> sorted;
   sorted.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -38,54 +63,179 @@ Status Triangulate3(const std::vector<Vec3>& points, const Control& control,
   using Traits = CGAL::Spatial_sort_traits_adapter_3<
       Kernel, CGAL::First_of_pair_property_map<IndexedPoint>>;
   CGAL::spatial_sort(sorted.begin(), sorted.end(), Traits());
+  return sorted;
+}
 
-  RunTicker ticker(control, Stage::kDelaunay);
+// Inserts sorted[*next, ...) on this thread until `enough` says stop (or
+// the points run out), polling every 64 points: one insertion can cost
+// thousands of new cells on cospherical input. `last` is the vertex of the
+// last point inserted.
+template <typename Delaunay, typename Enough>
+Status InsertOnThisThread(const std::vector<IndexedPoint>& sorted,
+                          Enough enough, RunTicker* ticker, size_t* next,
+                          typename Delaunay::Vertex_handle* last,
+                          Delaunay* dt) {
   const double count = static_cast<double>(sorted.size());
-  Delaunay3::Cell_handle hint;
-  for (size_t k = 0; k < sorted.size(); ++k) {
-    // One insertion can cost thousands of new cells on cospherical input.
-    if (k % 64 == 0 && !ticker.Poll(static_cast<double>(k) / count)) {
-      return ticker.status();
+  typename Delaunay::Cell_handle hint;
+  for (size_t& k = *next; k < sorted.size() && !enough(k); ++k) {
+    if (k % 64 == 0 && !ticker->Poll(static_cast<double>(k) / count)) {
+      return ticker->status();
     }
-    const Delaunay3::Vertex_handle v = dt->insert(sorted[k].first, hint);
-    v->info() = sorted[k].second;
-    hint = v->cell();
+    *last = dt->insert(sorted[k].first, hint);
+    (*last)->info() = sorted[k].second;
+    hint = (*last)->cell();
   }
-  if (dt->number_of_vertices() != points.size()) {
-    return InvalidArgument(
-        std::to_string(points.size() - dt->number_of_vertices()) +
-        " vertices coincide with others");
+  return OkStatus();
+}
+
+// Inserts sorted[first, last) on the arena's threads. A worker that finds
+// the run stopped (cancel, deadline) leaves its remaining points and sets
+// `abandoned`.
+void InsertBatch(
+    const std::vector<IndexedPoint>& sorted, size_t first, size_t last,
+    const Control& control,
+    tbb::enumerable_thread_specific<ParallelDelaunay::Vertex_handle>* hints,
+    std::atomic<bool>* abandoned, ParallelDelaunay* dt) {
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(first, last),
+      [&](const tbb::blocked_range<size_t>& range) {
+        ParallelDelaunay::Vertex_handle& hint = hints->local();
+        for (size_t k = range.begin(); k != range.end(); ++k) {
+          if ((k - range.begin()) % kWorkerPollStride == 0 &&
+              (abandoned->load() || StopRequested(control))) {
+            abandoned->store(true);
+            return;
+          }
+          const Kernel::Point_3& p = sorted[k].first;
+          // CGAL's parallel insertion protocol: lock the hint and the
+          // point's grid cell, insert if the conflict zone could be locked
+          // too, release everything, retry otherwise.
+          for (bool inserted = false; !inserted;) {
+            if (dt->try_lock_vertex(hint) && dt->try_lock_point(p)) {
+              const ParallelDelaunay::Vertex_handle v =
+                  dt->insert(p, hint, &inserted);
+              if (inserted) {
+                v->info() = sorted[k].second;
+                hint = v;
+              }
+            }
+            dt->unlock_all_elements();
+          }
+        }
+      });
+}
+
+Status ParallelInsert(const std::vector<IndexedPoint>& sorted, int threads,
+                      const Control& control, RunTicker* ticker,
+                      ParallelDelaunay* dt) {
+  // Alone first, until the triangulation is 3D and has some size.
+  size_t next = 0;
+  ParallelDelaunay::Vertex_handle last_vertex;
+  Status s = InsertOnThisThread(
+      sorted,
+      [dt](size_t k) { return k >= kSequentialPoints && dt->dimension() == 3; },
+      ticker, &next, &last_vertex, dt);
+  if (!s.ok() || next == sorted.size()) return s;
+  tbb::enumerable_thread_specific<ParallelDelaunay::Vertex_handle> hints(
+      last_vertex);
+  std::atomic<bool> abandoned{false};
+  tbb::task_arena arena(threads);
+  const double count = static_cast<double>(sorted.size());
+  for (size_t batch = kFirstBatch; next < sorted.size();
+       batch = std::min(2 * batch, kLargestBatch)) {
+    if (!ticker->Poll(static_cast<double>(next) / count)) {
+      return ticker->status();
+    }
+    const size_t last = std::min(sorted.size(), next + batch);
+    arena.execute([&] {
+      InsertBatch(sorted, next, last, control, &hints, &abandoned, dt);
+    });
+    if (abandoned.load()) {
+      // The stop a worker saw persists, unless the caller withdrew a
+      // cancel: points are missing either way, so the run ends.
+      return ticker->Poll() ? MakeStatus(StatusCode::kCancelled,
+                                         "cancelled by the caller")
+                            : ticker->status();
+    }
+    next = last;
   }
-  if (dt->dimension() < 3) {
+  return OkStatus();
+}
+
+template <typename Delaunay>
+Status CheckComplete(size_t point_count, const Delaunay& dt) {
+  if (dt.number_of_vertices() != point_count) {
+    return InvalidArgument(std::to_string(point_count -
+                                          dt.number_of_vertices()) +
+                           " vertices coincide with others");
+  }
+  if (dt.dimension() < 3) {
     return InvalidArgument("the polygon's vertices are coplanar");
   }
   return OkStatus();
 }
 
+template <typename Delaunay>
+Status ReadFaces(const Delaunay& dt, RunTicker* ticker,
+                 std::vector<Triangle>* faces, int64_t* tetrahedra) {
+  *tetrahedra = static_cast<int64_t>(dt.number_of_finite_cells());
+  faces->clear();
+  faces->reserve(2 * dt.number_of_cells());
+  for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
+    if (!ticker->Tick()) return ticker->status();
+    const typename Delaunay::Cell_handle c = f->first;
+    const int i = f->second;
+    Triangle t = {c->vertex((i + 1) & 3)->info(),
+                  c->vertex((i + 2) & 3)->info(),
+                  c->vertex((i + 3) & 3)->info()};
+    std::sort(t.begin(), t.end());
+    faces->push_back(t);
+  }
+  return OkStatus();
+}
+
+// Threads for `points` points: 1 below the threshold or when asked for.
+int ThreadsFor(size_t points, const Options& options) {
+  if (static_cast<int64_t>(points) < options.parallel_delaunay_min_points) {
+    return 1;
+  }
+  return options.delaunay_threads > 0 ? options.delaunay_threads
+                                      : tbb::info::default_concurrency();
+}
+
+Status Faces(const std::vector<Vec3>& points, const Options& options,
+             const Control& control, std::vector<Triangle>* faces,
+             int64_t* tetrahedra) {
+  const std::vector<IndexedPoint> sorted = SpatiallySorted(points);
+  RunTicker ticker(control, Stage::kDelaunay);
+  const int threads = ThreadsFor(points.size(), options);
+  if (threads <= 1) {
+    SequentialDelaunay dt;
+    size_t next = 0;
+    SequentialDelaunay::Vertex_handle last;
+    Status s = InsertOnThisThread(
+        sorted, [](size_t) { return false; }, &ticker, &next, &last, &dt);
+    if (s.ok()) s = CheckComplete(points.size(), dt);
+    if (s.ok()) s = ReadFaces(dt, &ticker, faces, tetrahedra);
+    return s;
+  }
+  CGAL::Bbox_3 box;
+  for (const IndexedPoint& p : sorted) box += p.first.bbox();
+  ParallelDelaunay::Lock_data_structure locks(box, 50);
+  ParallelDelaunay dt(&locks);
+  Status s = ParallelInsert(sorted, threads, control, &ticker, &dt);
+  if (s.ok()) s = CheckComplete(points.size(), dt);
+  if (s.ok()) s = ReadFaces(dt, &ticker, faces, tetrahedra);
+  return s;
+}
+
 }  // namespace
 
 Status CgalDelaunayFaces(const std::vector<Vec3>& points,
-                         const Control& control, std::vector<Triangle>* faces,
-                         int64_t* tetrahedra) {
+                         const Options& options, const Control& control,
+                         std::vector<Triangle>* faces, int64_t* tetrahedra) {
   try {
-    Delaunay3 dt;
-    Status s = Triangulate3(points, control, &dt);
-    if (!s.ok()) return s;
-    *tetrahedra = static_cast<int64_t>(dt.number_of_finite_cells());
-    faces->clear();
-    faces->reserve(2 * dt.number_of_cells());
-    RunTicker ticker(control, Stage::kDelaunay);
-    for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
-      if (!ticker.Tick()) return ticker.status();
-      const Delaunay3::Cell_handle c = f->first;
-      const int i = f->second;
-      Triangle t = {c->vertex((i + 1) & 3)->info(),
-                    c->vertex((i + 2) & 3)->info(),
-                    c->vertex((i + 3) & 3)->info()};
-      std::sort(t.begin(), t.end());
-      faces->push_back(t);
-    }
-    return OkStatus();
+    return Faces(points, options, control, faces, tetrahedra);
   } catch (const std::bad_alloc&) {
     return MakeStatus(StatusCode::kResourceExhausted,
                       "CGAL's Delaunay tetrahedralization ran out of memory "

@@ -18,9 +18,19 @@ namespace dot {
 // Distinct faces (each sorted ascending, in no particular order) of the 3D
 // Delaunay tetrahedralization of `points` (no duplicates, not all coplanar),
 // and its number of finite tetrahedra. Polls `control` while inserting.
+// Uses threads per options.parallel_delaunay_min_points and
+// options.delaunay_threads; the faces do not depend on them.
 Status CgalDelaunayFaces(const std::vector<Vec3>& points,
-                         const Control& control, std::vector<Triangle>* faces,
-                         int64_t* tetrahedra);
+                         const Options& options, const Control& control,
+                         std::vector<Triangle>* faces, int64_t* tetrahedra);
+
+// The same with default Options.
+inline Status CgalDelaunayFaces(const std::vector<Vec3>& points,
+                                const Control& control,
+                                std::vector<Triangle>* faces,
+                                int64_t* tetrahedra) {
+  return CgalDelaunayFaces(points, Options(), control, faces, tetrahedra);
+}
 
 }  // namespace dot
 

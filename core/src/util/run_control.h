@@ -17,6 +17,13 @@ inline double MsSince(std::chrono::steady_clock::time_point t0) {
       .count();
 }
 
+// Whether the caller asked the run to stop: cancel flag set or deadline
+// passed. Reads only `control`, so worker threads may call it too.
+inline bool StopRequested(const Control& control) {
+  return (control.cancel != nullptr && control.cancel->load()) ||
+         std::chrono::steady_clock::now() >= control.deadline;
+}
+
 // Loops call Tick() every iteration; every `kStride` ticks it reads the clock,
 // checks the cancel flag and deadline, and reports progress at most every
 // 50 ms. Cheap enough for inner loops, frequent enough for a ~10 ms response.

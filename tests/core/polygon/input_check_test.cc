@@ -104,5 +104,16 @@ TEST(InputTest, ZeroWeightsMeanArea) {
   EXPECT_DOUBLE_EQ(r.total_cost, r.metric_costs[Metric::kArea]);
 }
 
+TEST(InputTest, NegativeDelaunayThreadSettings) {
+  Options o;
+  o.delaunay_threads = -1;
+  ExpectRejected(Square(), "delaunay_threads must be >= 0",
+                 StatusCode::kInvalidArgument, o);
+  o = {};
+  o.parallel_delaunay_min_points = -5;
+  ExpectRejected(Square(), "parallel_delaunay_min_points must be >= 0",
+                 StatusCode::kInvalidArgument, o);
+}
+
 }  // namespace
 }  // namespace dot
