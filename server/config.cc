@@ -62,6 +62,14 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
       ->envname("DOT_DELAUNAY_BACKEND")
       ->check(CLI::IsMember({"cgal", "tetgen"}))
       ->default_str(std::string(DelaunayBackendName(s.solve.delaunay)));
+  Add(app, "--parallel-delaunay-min-points",
+      &s.solve.parallel_delaunay_min_points, "DOT_PARALLEL_DELAUNAY_MIN_POINTS",
+      "polygons with at least this many vertices get CGAL's parallel "
+      "(TBB) Delaunay step");
+  Add(app, "--delaunay-threads", &s.solve.delaunay_threads,
+      "DOT_DELAUNAY_THREADS",
+      "threads of the parallel Delaunay step (0: all cores); results do not "
+      "depend on it");
   AddSize(app, "--cache-mb", 20, &c->cache_bytes, "DOT_CACHE_MB",
           "memory for recently used search spaces, so re-solving a polygon "
           "with new weights runs only the dynamic program (0: no cache)");

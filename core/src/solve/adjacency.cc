@@ -30,8 +30,10 @@ struct EdgeOf {
 // Orders every edge's lists by the triangles' third vertex, so the dynamic
 // programs (and their tie-breaking) depend only on the candidate set, not on
 // the order a Delaunay backend happened to list it in.
-void CanonicalOrder(const std::vector<Triangle>& triangles, Adjacency* adj) {
+Status CanonicalOrder(const std::vector<Triangle>& triangles, RunTicker& ticker,
+                      Adjacency* adj) {
   for (int32_t e = 0; e < adj->edge_count(); ++e) {
+    if (!ticker.Tick()) return ticker.status();
     // Keys are distinct within a list: the third vertices of distinct
     // triangles on one edge.
     SortShortList(adj->inner.data() + adj->inner_begin[e],
@@ -48,6 +50,7 @@ void CanonicalOrder(const std::vector<Triangle>& triangles, Adjacency* adj) {
         adj->outer.data() + adj->outer_begin[e + 1],
         [&](int32_t a, int32_t b) { return outer_third(a) < outer_third(b); });
   }
+  return OkStatus();
 }
 
 }  // namespace
@@ -81,7 +84,9 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   // dominate here).
   const size_t records = 3 * triangles.size();
   std::vector<int32_t> start(n + 1);
+  // Every pass ticks: the all-triangles space brings millions of records.
   for (const Triangle& t : triangles) {
+    if (!ticker.Tick()) return ticker.status();
     ++start[t[0] + 1];
     ++start[t[1] + 1];
     ++start[t[0] + 1];
@@ -97,6 +102,7 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   }
   std::fill(start.begin(), start.end(), 0);
   for (uint32_t r : by_lo) {
+    if (!ticker.Tick()) return ticker.status();
     const auto [lo, hi] = edge_of(r);
     ++start[hi - lo + 1];
   }
@@ -117,6 +123,7 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   std::vector<bool> has_polygon_edge(n, false);
   std::pair<int32_t, int32_t> prev_edge{-1, -1};
   for (uint32_t r : by_span) {
+    if (!ticker.Tick()) return ticker.status();
     const std::pair<int32_t, int32_t> edge = edge_of(r);
     if (edge != prev_edge) {
       prev_edge = edge;
@@ -142,7 +149,8 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   }
   adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));
   adj.outer_begin.push_back(static_cast<int32_t>(adj.outer.size()));
-  CanonicalOrder(triangles, &adj);
+  const Status ordered = CanonicalOrder(triangles, ticker, &adj);
+  if (!ordered.ok()) return ordered;
   for (int32_t i = 0; i < n; ++i) {
     if (!has_polygon_edge[i]) adj.missing_polygon_edges.push_back(i);
   }
