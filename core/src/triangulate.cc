@@ -284,6 +284,19 @@ Result Triangulate(const Problem& problem, const Options& options,
     if (options.validate_output || r.space_used == SpaceUsed::kAll) {
       r.intersecting_pairs = CountIntersectingPairs(r.vertices, r.triangles);
     }
+    // The product's promise is an intersection-free result: `auto` never
+    // answers OK with a self-intersecting one (an explicit kAll may).
+    if (fallback && r.intersecting_pairs > 0) {
+      r.status = MakeStatus(
+          StatusCode::kNoTriangulation,
+          "no intersection-free triangulation found: the polygon has no "
+          "Delaunay triangulation, and the optimum over all triangles "
+          "self-intersects (" +
+              std::to_string(r.intersecting_pairs) +
+              " pairs); try protect_edges, or ask for search space 'all' to "
+              "get that self-intersecting optimum");
+      r.triangles.clear();
+    }
   }
   r.stats.total_ms = MsSince(t_start);
   return r;

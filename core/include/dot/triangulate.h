@@ -15,7 +15,8 @@
 //    unrestricted optimum, which may self-intersect; the result counts the
 //    intersecting pairs. Memory grows as n^3: for small n only.
 //  - kAuto: kDelaunay, then kAll when no Delaunay triangulation exists and
-//    n <= Options::all_space_max_vertices.
+//    n <= Options::all_space_max_vertices, accepted only when its optimum is
+//    intersection-free (otherwise kNoTriangulation, saying so).
 // DOT1/GK1 run when only per-triangle weights are non-zero, DOT2/GK2 when a
 // bi-triangle weight is. Both are exact minimizers; ties break
 // deterministically.
