@@ -3,7 +3,9 @@
 // result. Each stage lives in its own file; this one only wires them.
 #include "dot/triangulate.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -13,6 +15,7 @@
 #include "polygon/input_check.h"
 #include "polygon/plane_fit.h"
 #include "polygon/polygon_loop.h"
+#include "polygon/unit_scale.h"
 #include "search_space/all_triangles.h"
 #include "search_space/delaunay3d.h"
 #include "search_space/planar_cdt.h"
@@ -221,7 +224,12 @@ Result Triangulate(const Problem& problem, const Options& options,
   Report(control, Stage::kValidate, 0);
   r.status = CheckProblem(problem, options);
   if (!r.status.ok()) return r;
-  const PlaneFit fit = FitPlane(problem.vertices);
+  // Everything below works on exactly rescaled coordinates.
+  const UnitScale scale = ChooseUnitScale(problem.vertices);
+  std::vector<Vec3> work;
+  work.reserve(problem.vertices.size());
+  for (const Vec3& v : problem.vertices) work.push_back(scale.ToWork(v));
+  const PlaneFit fit = FitPlane(work);
   r.status = CheckNotCollinear(fit, static_cast<int>(problem.vertices.size()),
                                options);
   if (!r.status.ok()) return r;
@@ -229,8 +237,9 @@ Result Triangulate(const Problem& problem, const Options& options,
   r.planar = fit.max_plane_distance <= options.planar_tolerance * fit.diagonal;
   MetricWeights weights = problem.weights;
   if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
+  const MetricWeights work_weights = WorkWeights(weights, scale);
 
-  PolygonLoop loop{problem.vertices, problem.normals, {}};
+  PolygonLoop loop{std::move(work), problem.normals, {}};
   loop.ids.resize(problem.vertices.size());
   std::iota(loop.ids.begin(), loop.ids.end(), 0);
   r.stats.validate_ms = MsSince(t_start);
@@ -254,7 +263,7 @@ Result Triangulate(const Problem& problem, const Options& options,
       if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());
       space = std::move(fresh);
     }
-    if (s.ok()) s = Solve(*space, weights, options, control, &r);
+    if (s.ok()) s = Solve(*space, work_weights, options, control, &r);
   }
   const bool fallback = options.space == SearchSpace::kAuto &&
                         s.code == StatusCode::kNoTriangulation &&
@@ -262,8 +271,8 @@ Result Triangulate(const Problem& problem, const Options& options,
   if (options.space == SearchSpace::kAll || fallback) {
     auto fresh = std::make_shared<PreparedSpace>();
     fresh->loop = loop;
-    s = PrepareAll(weights, options, control, fresh.get(), &r.stats);
-    if (s.ok()) s = Solve(*fresh, weights, options, control, &r);
+    s = PrepareAll(work_weights, options, control, fresh.get(), &r.stats);
+    if (s.ok()) s = Solve(*fresh, work_weights, options, control, &r);
     space = std::move(fresh);
   }
   r.status = s;
@@ -271,7 +280,12 @@ Result Triangulate(const Problem& problem, const Options& options,
   // is shared.
   const PolygonLoop& solved = space != nullptr ? space->loop : loop;
   r.stats.n = solved.size();
-  r.vertices = solved.vertices;
+  // Back in the caller's coordinates: the input's exactly, then inserted
+  // ones (the inverse scaling is exact too).
+  r.vertices = problem.vertices;
+  for (size_t i = problem.vertices.size(); i < solved.vertices.size(); ++i) {
+    r.vertices.push_back(scale.ToCaller(solved.vertices[i]));
+  }
   r.polygon = solved.ids;
   for (auto id = static_cast<int32_t>(problem.vertices.size());
        id < static_cast<int32_t>(r.vertices.size()); ++id) {
@@ -279,10 +293,24 @@ Result Triangulate(const Problem& problem, const Options& options,
   }
   if (r.status.ok()) {
     Report(control, Stage::kTiling, 1);
-    r.metric_costs = EvaluateMetrics(r.vertices, solved.normals, r.triangles);
+    r.metric_costs = ToCallerUnits(
+        EvaluateMetrics(solved.vertices, solved.normals, r.triangles), scale);
     r.total_cost = WeightedTotal(weights, r.metric_costs);
+    const bool metrics_finite =
+        std::all_of(r.metric_costs.v.begin(), r.metric_costs.v.end(),
+                    [](double c) { return std::isfinite(c); });
+    if (metrics_finite && !std::isfinite(r.total_cost)) {
+      r.status = InvalidArgument(
+          "the weighted cost overflows a double (the weights times the "
+          "metric sums exceed 1.8e308); scale the weights down: only their "
+          "ratios matter");
+      r.triangles.clear();
+    }
     if (options.validate_output || r.space_used == SpaceUsed::kAll) {
-      r.intersecting_pairs = CountIntersectingPairs(r.vertices, r.triangles);
+      // On the work coordinates: the same answer (exact scaling, exact
+      // predicates), without extreme magnitudes.
+      r.intersecting_pairs =
+          CountIntersectingPairs(solved.vertices, r.triangles);
     }
     // The product's promise is an intersection-free result: `auto` never
     // answers OK with a self-intersecting one (an explicit kAll may).

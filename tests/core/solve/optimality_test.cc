@@ -153,10 +153,19 @@ TEST(OptimalityTest, AutoFallsBackToAllWhenNoDelaunayTriangulation) {
       continue;
     }
     ++fallbacks;
+    Options all;
+    all.space = SearchSpace::kAll;
+    const Result optimum = Triangulate(p, all);
+    ASSERT_TRUE(optimum.status.ok()) << optimum.status.message;
     const Result r = Triangulate(p);  // kAuto
-    ASSERT_TRUE(r.status.ok()) << r.status.message;
-    EXPECT_EQ(r.space_used, SpaceUsed::kAll);
-    EXPECT_GE(r.intersecting_pairs, 0);
+    // Accepted only when intersection-free.
+    if (optimum.intersecting_pairs == 0) {
+      ASSERT_TRUE(r.status.ok()) << r.status.message;
+      EXPECT_EQ(r.space_used, SpaceUsed::kAll);
+      EXPECT_EQ(r.triangles, optimum.triangles);
+    } else {
+      EXPECT_EQ(r.status.code, StatusCode::kNoTriangulation);
+    }
     Options no_fallback;
     no_fallback.all_space_max_vertices = 7;
     EXPECT_EQ(Triangulate(p, no_fallback).status.code,
