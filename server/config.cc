@@ -73,7 +73,7 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   AddSize(app, "--cache-mb", 20, &c->cache_bytes, "DOT_CACHE_MB",
           "memory for recently used search spaces, so re-solving a polygon "
           "with new weights runs only the dynamic program (0: no cache)");
-  AddSize(app, "--malloc-keep-mb", 20, &c->malloc_keep_bytes,
+  AddSize(app, "--malloc-keep-mb", 20, &s.malloc_keep_bytes,
           "DOT_MALLOC_KEEP_MB",
           "freed memory the allocator keeps for the next requests instead "
           "of returning it to the kernel (at most 1024; 0: glibc's "

@@ -33,9 +33,6 @@ struct ServerConfig {
   MetricsOptions metrics;
   TlsOptions tls;
   int64_t cache_bytes = int64_t{256} << 20;  // search-space cache; 0: off
-  // Freed memory the allocator keeps for the next requests (at most 1 GiB);
-  // 0: glibc's defaults.
-  int64_t malloc_keep_bytes = int64_t{512} << 20;
   int drain_seconds = 20;
   int max_connection_age_s = 300;  // 0: never recycle connections
   std::string log_level = "info";

@@ -34,9 +34,9 @@ int main(int argc, char** argv) {
   // its tables in again: a quarter of a 2,000-vertex request's time here.
   // Keeping up to --malloc-keep-mb of freed memory makes repeated solves
   // reuse warm pages.
-  if (config.malloc_keep_bytes > 0) {
+  if (config.service.malloc_keep_bytes > 0) {
     const auto keep = static_cast<int>(
-        std::min<int64_t>(config.malloc_keep_bytes, int64_t{1} << 30));
+        std::min<int64_t>(config.service.malloc_keep_bytes, int64_t{1} << 30));
     mallopt(M_MMAP_THRESHOLD, keep / 2);
     mallopt(M_TRIM_THRESHOLD, keep);
   }

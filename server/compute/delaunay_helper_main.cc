@@ -10,20 +10,13 @@
 
 #include "compute/delaunay_helpers.h"
 
-// AddressSanitizer reserves terabytes of shadow address space, so an
-// RLIMIT_AS cap would make its every mmap fail: sanitizer builds run uncapped.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kCanCapAddressSpace = false;
-#else
-constexpr bool kCanCapAddressSpace = true;
-#endif
-
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--memory-limit-bytes") == 0 && i + 1 < argc) {
       const rlim_t limit = std::strtoull(argv[++i], nullptr, 10);
       const rlimit rl{limit, limit};
-      if (kCanCapAddressSpace && limit > 0 && setrlimit(RLIMIT_AS, &rl) != 0) {
+      if (dot::server::kCanCapAddressSpace && limit > 0 &&
+          setrlimit(RLIMIT_AS, &rl) != 0) {
         std::cerr << "dot-delaunay-helper: setrlimit failed\n";
         return 2;
       }

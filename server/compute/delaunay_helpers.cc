@@ -5,11 +5,13 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <new>
 
 extern char** environ;
@@ -51,10 +53,43 @@ bool ReadAll(int fd, void* data, size_t len) {
 }  // namespace
 
 #if DOT_WITH_TETGEN
+namespace {
+
+// While alive, this process may grow by at most `bytes` of address space
+// (the soft RLIMIT_AS, below the hard cap set at start); then restored.
+class GrowthLimit {
+ public:
+  explicit GrowthLimit(uint64_t bytes) {
+    if (!kCanCapAddressSpace || bytes == 0 ||
+        ::getrlimit(RLIMIT_AS, &saved_) != 0) {
+      return;
+    }
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    uint64_t vm_kib = 0;
+    while (std::getline(status, line)) {
+      if (line.rfind("VmSize:", 0) == 0) vm_kib = std::atoll(line.c_str() + 7);
+    }
+    const rlimit limit{std::min<rlim_t>(saved_.rlim_max, vm_kib * 1024 + bytes),
+                       saved_.rlim_max};
+    active_ = ::setrlimit(RLIMIT_AS, &limit) == 0;
+  }
+  ~GrowthLimit() {
+    if (active_) ::setrlimit(RLIMIT_AS, &saved_);
+  }
+
+ private:
+  rlimit saved_{};
+  bool active_ = false;
+};
+
+}  // namespace
+
 int RunDelaunayHelper(int in_fd, int out_fd) {
   for (;;) {
-    uint64_t n = 0;
-    if (!ReadAll(in_fd, &n, sizeof n)) return 0;  // the server closed the pipe
+    uint64_t budget = 0, n = 0;
+    if (!ReadAll(in_fd, &budget, sizeof budget)) return 0;  // server closed
+    if (!ReadAll(in_fd, &n, sizeof n)) return 1;
     std::vector<double> coords(3 * n);
     if (!ReadAll(in_fd, coords.data(), coords.size() * sizeof(double)))
       return 1;
@@ -64,13 +99,16 @@ int RunDelaunayHelper(int in_fd, int out_fd) {
     }
     Tetrahedralization t;
     Status s;
-    try {
-      s = TetgenTetrahedralize(points, &t);
-    } catch (const std::bad_alloc&) {  // copying TetGen's output
-      t = {};
-      s = MakeStatus(StatusCode::kResourceExhausted,
-                     "the Delaunay step ran out of memory on " +
-                         std::to_string(n) + " points");
+    {
+      const GrowthLimit limit(budget);
+      try {
+        s = TetgenTetrahedralize(points, &t);
+      } catch (const std::bad_alloc&) {  // copying TetGen's output
+        t = {};
+        s = MakeStatus(StatusCode::kResourceExhausted,
+                       "the Delaunay step ran out of memory on " +
+                           std::to_string(n) + " points");
+      }
     }
     const int32_t code = static_cast<int32_t>(s.code);
     const auto len = static_cast<uint32_t>(s.message.size());
@@ -166,7 +204,8 @@ int DelaunayHelperPool::Kill(Helper* h) {
 Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
                                           Tetrahedralization* out,
                                           const std::atomic<bool>* cancel,
-                                          Clock::time_point deadline) {
+                                          Clock::time_point deadline,
+                                          int64_t memory_budget_bytes) {
   Helper* h = nullptr;
   {
     std::unique_lock<std::mutex> lock(mu_);
@@ -192,7 +231,13 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
     s = Spawn(h);
     if (s.ok()) ++starts_;
   }
-  if (s.ok()) s = Exchange(h, points, out, cancel, deadline);
+  if (s.ok()) {
+    s = Exchange(h, points, memory_budget_bytes, out, cancel, deadline);
+  }
+  if (s.code == StatusCode::kResourceExhausted && memory_budget_bytes > 0) {
+    s.message += " (the request's memory budget is " +
+                 std::to_string(memory_budget_bytes >> 20) + " MiB)";
+  }
   {
     std::lock_guard<std::mutex> lock(mu_);
     h->busy = false;
@@ -202,6 +247,7 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
 }
 
 Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
+                                    int64_t memory_budget_bytes,
                                     Tetrahedralization* out,
                                     const std::atomic<bool>* cancel,
                                     Clock::time_point deadline) {
@@ -234,7 +280,10 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
     return Internal("the Delaunay helper process " + how);
   };
   const uint64_t n = points.size();
-  if (!WriteAll(h->to_child, &n, sizeof n) ||
+  const auto budget =
+      static_cast<uint64_t>(std::max<int64_t>(0, memory_budget_bytes));
+  if (!WriteAll(h->to_child, &budget, sizeof budget) ||
+      !WriteAll(h->to_child, &n, sizeof n) ||
       !WriteAll(h->to_child, points.data(), n * sizeof(Vec3))) {
     return died("writing the points failed");
   }
@@ -274,6 +323,15 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
   if (s.ok()) s = read(message.data(), len);
   if (s.ok()) s = read(&count, sizeof count);
   if (!s.ok()) return s;
+  const uint64_t reply_bytes =
+      count * (sizeof(out->tets[0]) + sizeof(out->neighbors[0]));
+  if (budget > 0 && reply_bytes > budget) {
+    Kill(h);  // the rest of its reply is not read
+    return MakeStatus(
+        StatusCode::kResourceExhausted,
+        "TetGen's " + std::to_string(count) + " tetrahedra take " +
+            std::to_string(reply_bytes >> 20) + " MiB, over the budget");
+  }
   out->tets.resize(count);
   out->neighbors.resize(count);
   s = read(out->tets.data(), count * sizeof(out->tets[0]));

@@ -7,7 +7,8 @@
 // is memory-capped with setrlimit. Dead children are restarted on demand.
 //
 // Pipe protocol (host byte order):
-//   request:  uint64 n, then n * 3 doubles
+//   request:  uint64 memory budget (bytes the helper may grow by for this
+//             request; 0: its own cap only), uint64 n, then n * 3 doubles
 //   response: int32 status code, uint32 message length, message bytes,
 //             uint64 t, then t * 4 int32 corners and t * 4 int32 neighbours
 #ifndef DOT_SERVER_DELAUNAY_HELPERS_H_
@@ -27,6 +28,15 @@
 
 namespace dot::server {
 
+// AddressSanitizer reserves terabytes of shadow address space, so an
+// RLIMIT_AS cap would make its every mmap fail: sanitizer builds run the
+// helpers uncapped.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kCanCapAddressSpace = false;
+#else
+inline constexpr bool kCanCapAddressSpace = true;
+#endif
+
 struct HelperOptions {
   // Helper processes; -1: one per compute thread, 0: TetGen in-process
   // (serialized) instead.
@@ -45,11 +55,16 @@ class DelaunayHelperPool {
   DelaunayHelperPool(const DelaunayHelperPool&) = delete;
   DelaunayHelperPool& operator=(const DelaunayHelperPool&) = delete;
 
-  // Blocks for a free helper; kCancelled / kDeadlineExceeded kill it.
+  // Blocks for a free helper; kCancelled / kDeadlineExceeded kill it. With
+  // `memory_budget_bytes` > 0 the helper may grow by at most that much for
+  // this request (it lowers its soft RLIMIT_AS to its size plus the budget,
+  // then restores it), and a reply larger than the budget is refused
+  // unread: a request's budget bounds TetGen as it bounds CGAL.
   Status Tetrahedralize(const std::vector<Vec3>& points,
                         Tetrahedralization* out,
                         const std::atomic<bool>* cancel,
-                        std::chrono::steady_clock::time_point deadline);
+                        std::chrono::steady_clock::time_point deadline,
+                        int64_t memory_budget_bytes = 0);
   int64_t starts() const { return starts_; }  // helper processes started
   std::vector<pid_t> Pids() const;            // running helpers, for tests
 
@@ -65,7 +80,8 @@ class DelaunayHelperPool {
   // then cleaned up, ready to be spawned again.
   bool Reap(Helper* h, int* status);
   Status Exchange(Helper* h, const std::vector<Vec3>& points,
-                  Tetrahedralization* out, const std::atomic<bool>* cancel,
+                  int64_t memory_budget_bytes, Tetrahedralization* out,
+                  const std::atomic<bool>* cancel,
                   std::chrono::steady_clock::time_point deadline);
 
   const HelperOptions config_;

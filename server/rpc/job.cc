@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/job.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <exception>
 
@@ -156,7 +158,8 @@ void JobRunner::Run(Job& job) {
       control.tetrahedralize = [this, &job](const std::vector<Vec3>& points,
                                             Tetrahedralization* out) {
         const Status s =
-            helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline);
+            helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline,
+                                     job.options.memory_budget_bytes);
         metrics_->HelperStarts(helpers_->starts());
         return s;
       };
@@ -179,6 +182,12 @@ void JobRunner::Run(Job& job) {
   }
   job.result = std::move(result);
   job.finished = Clock::now();
+  const Stats& st = job.result.stats;
+  if (st.estimated_bytes > options_.malloc_keep_bytes / 8 ||
+      st.tetrahedra > 1000000 ||
+      job.result.status.code == StatusCode::kResourceExhausted) {
+    ReturnFreedMemory();  // only after large requests: it walks the heap
+  }
   job.ran = true;
   // The slot is released after this returns; count it free already, so the
   // gauge does not stay up when this was the last job.
@@ -186,6 +195,14 @@ void JobRunner::Run(Job& job) {
   // Moved out first: a callback may hold the job, and must not outlive it.
   std::function<void()> done = std::move(job.on_done);
   done();
+}
+
+void JobRunner::ReturnFreedMemory() {
+  const int64_t keep = options_.malloc_keep_bytes;
+  if (keep <= 0) return;
+  // The trim runs only when more than `keep` lies free.
+  const struct mallinfo2 info = ::mallinfo2();
+  if (static_cast<int64_t>(info.fordblks) > keep) ::malloc_trim(0);
 }
 
 void JobRunner::Answered(const Job& job, const grpc::Status& status) {

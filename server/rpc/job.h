@@ -92,6 +92,8 @@ class JobRunner {
 
  private:
   void Run(Job& job);
+  // Gives memory freed beyond options_.malloc_keep_bytes back to the kernel.
+  void ReturnFreedMemory();
   // False when draining began: the job is then refused, not tracked, so a
   // drain's CancelAllForDrain never misses a job admitted after it began.
   bool Track(Job* job);

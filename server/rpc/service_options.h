@@ -32,6 +32,10 @@ struct ServiceOptions {
   // run cannot see a cancel before it ends (gRPC delivers OnCancel only
   // after the handler returns), so keep it small. 0: never.
   int inline_max_vertices = 500;
+  // Freed memory the allocator keeps for the next requests (at most 1 GiB;
+  // main() sets glibc's thresholds from it); after a request that needed
+  // more, the excess is returned to the kernel. 0: glibc's defaults.
+  int64_t malloc_keep_bytes = int64_t{512} << 20;
   // What GetSource serves and GetServerInfo points to (AGPL-3.0 s. 13).
   std::string source_archive = "/usr/share/dot/dot-source.tar.gz";
   std::string source_url;

@@ -52,6 +52,36 @@ constexpr size_t kLargestBatch = 32000;
 // Workers check for cancel and deadline themselves every this many points.
 constexpr size_t kWorkerPollStride = 64;
 
+// The memory a tetrahedralization of `cells` cells stands for: its own
+// cells, the faces read off it (two per cell), and the smallest tables a
+// solve over those faces needs. Past the budget the insertion stops: on
+// cospherical input (the moment curve) the cells grow as n^2 and would
+// take gigabytes before any table is allocated.
+template <typename Delaunay>
+struct CellBudget {
+  int64_t budget_bytes;
+  int64_t Bytes(int64_t cells) const {
+    const int64_t structure =
+        cells * static_cast<int64_t>(sizeof(typename Delaunay::Cell) +
+                                     2 * sizeof(Triangle));
+    return std::max(structure, EstimateTableBytes(2 * cells, false));
+  }
+  bool Exceeded(const Delaunay& dt) const {
+    return Bytes(static_cast<int64_t>(dt.number_of_cells())) > budget_bytes;
+  }
+  Status Refusal(const Delaunay& dt, size_t inserted, size_t total) const {
+    const int64_t cells = static_cast<int64_t>(dt.number_of_cells());
+    return MakeStatus(
+        StatusCode::kResourceExhausted,
+        "the Delaunay tetrahedralization outgrew the memory budget: " +
+            std::to_string(cells) + " cells after " + std::to_string(inserted) +
+            " of " + std::to_string(total) + " points need about " +
+            std::to_string(Bytes(cells) >> 20) +
+            " MiB with their faces and tables, over the budget of " +
+            std::to_string(budget_bytes >> 20) + " MiB");
+  }
+};
+
 std::vector<IndexedPoint> SpatiallySorted(const std::vector<Vec3>& points) {
   std::vector<IndexedPoint> sorted;
   sorted.reserve(points.size());
@@ -72,14 +102,18 @@ std::vector<IndexedPoint> SpatiallySorted(const std::vector<Vec3>& points) {
 // last point inserted.
 template <typename Delaunay, typename Enough>
 Status InsertOnThisThread(const std::vector<IndexedPoint>& sorted,
-                          Enough enough, RunTicker* ticker, size_t* next,
+                          Enough enough, const CellBudget<Delaunay>& budget,
+                          RunTicker* ticker, size_t* next,
                           typename Delaunay::Vertex_handle* last,
                           Delaunay* dt) {
   const double count = static_cast<double>(sorted.size());
   typename Delaunay::Cell_handle hint;
   for (size_t& k = *next; k < sorted.size() && !enough(k); ++k) {
-    if (k % 64 == 0 && !ticker->Poll(static_cast<double>(k) / count)) {
-      return ticker->status();
+    if (k % 64 == 0) {
+      if (!ticker->Poll(static_cast<double>(k) / count)) {
+        return ticker->status();
+      }
+      if (budget.Exceeded(*dt)) return budget.Refusal(*dt, k, sorted.size());
     }
     *last = dt->insert(sorted[k].first, hint);
     (*last)->info() = sorted[k].second;
@@ -93,7 +127,7 @@ Status InsertOnThisThread(const std::vector<IndexedPoint>& sorted,
 // `abandoned`.
 void InsertBatch(
     const std::vector<IndexedPoint>& sorted, size_t first, size_t last,
-    const Control& control,
+    const Control& control, const CellBudget<ParallelDelaunay>& budget,
     tbb::enumerable_thread_specific<ParallelDelaunay::Vertex_handle>* hints,
     std::atomic<bool>* abandoned, ParallelDelaunay* dt) {
   tbb::parallel_for(
@@ -102,7 +136,8 @@ void InsertBatch(
         ParallelDelaunay::Vertex_handle& hint = hints->local();
         for (size_t k = range.begin(); k != range.end(); ++k) {
           if ((k - range.begin()) % kWorkerPollStride == 0 &&
-              (abandoned->load() || StopRequested(control))) {
+              (abandoned->load() || StopRequested(control) ||
+               budget.Exceeded(*dt))) {
             abandoned->store(true);
             return;
           }
@@ -126,15 +161,16 @@ void InsertBatch(
 }
 
 Status ParallelInsert(const std::vector<IndexedPoint>& sorted, int threads,
-                      const Control& control, RunTicker* ticker,
-                      ParallelDelaunay* dt) {
+                      const Control& control,
+                      const CellBudget<ParallelDelaunay>& budget,
+                      RunTicker* ticker, ParallelDelaunay* dt) {
   // Alone first, until the triangulation is 3D and has some size.
   size_t next = 0;
   ParallelDelaunay::Vertex_handle last_vertex;
   Status s = InsertOnThisThread(
       sorted,
       [dt](size_t k) { return k >= kSequentialPoints && dt->dimension() == 3; },
-      ticker, &next, &last_vertex, dt);
+      budget, ticker, &next, &last_vertex, dt);
   if (!s.ok() || next == sorted.size()) return s;
   tbb::enumerable_thread_specific<ParallelDelaunay::Vertex_handle> hints(
       last_vertex);
@@ -148,14 +184,17 @@ Status ParallelInsert(const std::vector<IndexedPoint>& sorted, int threads,
     }
     const size_t last = std::min(sorted.size(), next + batch);
     arena.execute([&] {
-      InsertBatch(sorted, next, last, control, &hints, &abandoned, dt);
+      InsertBatch(sorted, next, last, control, budget, &hints, &abandoned, dt);
     });
+    if (abandoned.load() && budget.Exceeded(*dt)) {
+      return budget.Refusal(*dt, last, sorted.size());
+    }
     if (abandoned.load()) {
       // The stop a worker saw persists, unless the caller withdrew a
       // cancel: points are missing either way, so the run ends.
-      return ticker->Poll() ? MakeStatus(StatusCode::kCancelled,
-                                         "cancelled by the caller")
-                            : ticker->status();
+      return ticker->Poll()
+                 ? MakeStatus(StatusCode::kCancelled, "cancelled by the caller")
+                 : ticker->status();
     }
     next = last;
   }
@@ -165,9 +204,9 @@ Status ParallelInsert(const std::vector<IndexedPoint>& sorted, int threads,
 template <typename Delaunay>
 Status CheckComplete(size_t point_count, const Delaunay& dt) {
   if (dt.number_of_vertices() != point_count) {
-    return InvalidArgument(std::to_string(point_count -
-                                          dt.number_of_vertices()) +
-                           " vertices coincide with others");
+    return InvalidArgument(
+        std::to_string(point_count - dt.number_of_vertices()) +
+        " vertices coincide with others");
   }
   if (dt.dimension() < 3) {
     return InvalidArgument("the polygon's vertices are coplanar");
@@ -214,7 +253,9 @@ Status Faces(const std::vector<Vec3>& points, const Options& options,
     size_t next = 0;
     SequentialDelaunay::Vertex_handle last;
     Status s = InsertOnThisThread(
-        sorted, [](size_t) { return false; }, &ticker, &next, &last, &dt);
+        sorted, [](size_t) { return false; },
+        CellBudget<SequentialDelaunay>{options.memory_budget_bytes}, &ticker,
+        &next, &last, &dt);
     if (s.ok()) s = CheckComplete(points.size(), dt);
     if (s.ok()) s = ReadFaces(dt, &ticker, faces, tetrahedra);
     return s;
@@ -223,7 +264,9 @@ Status Faces(const std::vector<Vec3>& points, const Options& options,
   for (const IndexedPoint& p : sorted) box += p.first.bbox();
   ParallelDelaunay::Lock_data_structure locks(box, 50);
   ParallelDelaunay dt(&locks);
-  Status s = ParallelInsert(sorted, threads, control, &ticker, &dt);
+  Status s = ParallelInsert(
+      sorted, threads, control,
+      CellBudget<ParallelDelaunay>{options.memory_budget_bytes}, &ticker, &dt);
   if (s.ok()) s = CheckComplete(points.size(), dt);
   if (s.ok()) s = ReadFaces(dt, &ticker, faces, tetrahedra);
   return s;
