@@ -267,7 +267,9 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
     }
     std::string how;
     if (WIFEXITED(status)) {
-      how = "exited with code " + std::to_string(WEXITSTATUS(status));
+      // (A sanitizer build's helper turns a crash into an exit code.)
+      how = "exited with code " + std::to_string(WEXITSTATUS(status)) +
+            " while working on this input";
     } else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
       how =
           "was killed (SIGKILL: out of memory, or stopped from outside; "
