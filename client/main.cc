@@ -14,6 +14,10 @@ int main(int argc, char** argv) {
       "4 some polygon has no triangulation."};
   app.set_version_flag("--version", "dotctl " DOT_VERSION);
   app.require_subcommand(1);
+  // Global options (--server, TLS, --timeout) are accepted after the
+  // subcommand too, as in most CLIs: subcommands pass what they do not know
+  // up to here.
+  app.fallthrough();
   dot::client::Context ctx;
   dot::client::AddConnectionFlags(&app, &ctx.connection);
   dot::client::AddTriangulateCommand(app, &ctx);

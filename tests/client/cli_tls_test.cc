@@ -169,6 +169,13 @@ TEST_F(CliTest, ExitCodes) {
       << bad.out;
 }
 
+TEST_F(CliTest, GlobalOptionsWorkAfterTheSubcommand) {
+  // flag_ is "--server ADDRESS "; here it follows the subcommand.
+  const CliRun health = Dotctl("health " + flag_);
+  EXPECT_EQ(health.code, 0) << health.out;
+  EXPECT_NE(health.out.find("SERVING"), std::string::npos) << health.out;
+}
+
 TEST_F(CliTest, BothBinariesPrintTheirVersion) {
   const CliRun dotctl = Dotctl("--version");
   EXPECT_EQ(dotctl.code, 0);
