@@ -33,6 +33,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -96,18 +97,23 @@ struct Problem {
 //  planar_tolerance      A polygon is planar when every vertex is within this
 //                        fraction of its bounding-box diagonal from its
 //                        least-squares plane. Default: 1e-6.
-//  memory_budget_bytes   Refuse (kResourceExhausted) a request whose
-//                        estimated table memory exceeds this, before
+//  memory_budget_bytes   Refuse (kResourceExhausted) a request whose memory
+//                        would exceed this: the Delaunay step stops when its
+//                        cells (with their faces and the tables they imply)
+//                        pass it; the tables are estimated before
 //                        allocating. Default: 2 GiB (int64_t{2} << 30).
 //  validate_output       Count self-intersecting triangle pairs of the output
 //                        (Result::intersecting_pairs; always done for kAll
 //                        results, which may self-intersect). Default: false.
 //  parallel_delaunay_min_points
 //                        The CGAL backend inserts points on several threads
-//                        from this many polygon vertices on; below, threads
-//                        cost more than they save. The result is the same
-//                        either way (CGAL's Delaunay is unique under symbolic
-//                        perturbation). Default: 20000.
+//                        (TBB, CGAL's lock grid) from this many polygon
+//                        vertices on. The result is the same either way
+//                        (CGAL's Delaunay is unique under symbolic
+//                        perturbation). Default: off (INT_MAX): on the
+//                        2-core machines measured, parallel insertion was
+//                        slower on every input (README, Performance); set
+//                        it (e.g. 20000) where more cores pay off.
 //  delaunay_threads      Threads of that parallel insertion: 0 all cores, 1
 //                        sequential always. Default: 0.
 struct Options {
@@ -120,7 +126,7 @@ struct Options {
   double planar_tolerance = 1e-6;
   int64_t memory_budget_bytes = int64_t{2} << 30;
   bool validate_output = false;
-  int parallel_delaunay_min_points = 20000;
+  int parallel_delaunay_min_points = std::numeric_limits<int>::max();
   int delaunay_threads = 0;
 };
 
