@@ -142,12 +142,23 @@ std::string FinalizeConfig(ServerConfig* c) {
     return "Delaunay helper '" + h.executable +
            "' is not executable; set --helper-path or --delaunay-helpers 0";
   }
-  const ServiceOptions& s = c->service;
+  ServiceOptions& s = c->service;
   if (c->pool.queue_size < 0) return "--queue-size must be >= 0";
   if (s.max_vertices < 3) return "--max-vertices must be >= 3";
   if (s.max_compute_ms <= 0) return "--max-compute-ms must be > 0";
   if (s.chunk_bytes == 0) return "--chunk-kb must be > 0";
   if (s.max_message_bytes <= 0) return "--max-message-mb must be > 0";
+  // A polygon is 24 bytes a vertex on the wire (packed doubles): promise
+  // only what a request message can carry.
+  const int fits = (c->service.max_message_bytes - 4096) / 24;
+  if (c->service.max_vertices > fits) {
+    c->notes.push_back("--max-vertices " +
+                       std::to_string(c->service.max_vertices) +
+                       " lowered to " + std::to_string(fits) +
+                       ": a larger polygon does not fit --max-message-mb " +
+                       std::to_string(c->service.max_message_bytes >> 20));
+    c->service.max_vertices = fits;
+  }
   if (c->tls.cert.empty() != c->tls.key.empty()) {
     return "--tls-cert and --tls-key go together";
   }

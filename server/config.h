@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "compute/compute_pool.h"
 #include "compute/delaunay_helpers.h"
@@ -36,11 +37,14 @@ struct ServerConfig {
   int drain_seconds = 20;
   int max_connection_age_s = 300;  // 0: never recycle connections
   std::string log_level = "info";
+  // Set by FinalizeConfig: adjustments it made, for the start-up log.
+  std::vector<std::string> notes;
 };
 
 void AddServerFlags(CLI::App& app, ServerConfig* config);
-// Resolves derived defaults (threads, helper count and path) and checks the
-// whole; returns an error message, or "" when the configuration is usable.
+// Resolves derived defaults (threads, helper count and path), lowers limits
+// the rest cannot honour (noted in `notes`), and checks the whole; returns
+// an error message, or "" when the configuration is usable.
 std::string FinalizeConfig(ServerConfig* config);
 
 }  // namespace dot::server

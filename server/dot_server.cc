@@ -98,6 +98,7 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
     return nullptr;
   }
   // Health answers for the whole server ("") and by service name.
+  for (const std::string& note : c.notes) spdlog::warn("{}", note);
   s->server_->GetHealthCheckService()->SetServingStatus(true);
   s->server_->GetHealthCheckService()->SetServingStatus(
       v1::Triangulator::service_full_name(), true);

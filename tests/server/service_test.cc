@@ -617,6 +617,10 @@ TEST(ServiceTest, ServerInfoAndSource) {
   EXPECT_EQ(info.license(), "AGPL-3.0-or-later");
   EXPECT_EQ(info.source_url(), "https://example.org/dot");
   EXPECT_EQ(info.limits().compute_threads(), 2u);
+  // The advertised limit fits in one request message (24 bytes a vertex).
+  EXPECT_LE(uint64_t{info.limits().max_vertices()} * 24,
+            info.limits().max_message_bytes());
+  EXPECT_GT(info.limits().max_vertices(), 600000u);
   EXPECT_EQ(info.limits().cache_bytes(), uint64_t{256} << 20);
   EXPECT_NE(info.backends(0).find("cgal"), std::string::npos);
   EXPECT_FALSE(info.version().empty());
