@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcgal-demo   # real meshes (data.tar.gz) for the hole tests
   openssl curl gnuplot-nox
+  python3-grpcio  # raw-wire service tests (/usr/bin/python3)
 )
 missing=()
 for p in "${packages[@]}"; do

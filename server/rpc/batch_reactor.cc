@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/batch_reactor.h"
 
+#include <grpcpp/impl/codegen/proto_utils.h>
+
 namespace dot::server {
 namespace {
 
@@ -30,8 +32,23 @@ void BatchReactor::OnReadDone(bool ok) {
   } else {
     // request_ is ours until reading_ is cleared.
     Item item;
-    item.job = runner_->Admit(request_, context_->deadline(),
-                              "TriangulateBatch", &item.refused);
+    v1::TriangulateRequest request;
+    const grpc::Status parsed =
+        grpc::SerializationTraits<v1::TriangulateRequest>::Deserialize(
+            &request_, &request);
+    ++requests_read_;
+    if (parsed.ok()) {
+      item.job = runner_->Admit(request, context_->deadline(),
+                                "TriangulateBatch", &item.refused);
+    } else {  // not admitted: only answered (logged and counted)
+      item.job = std::make_shared<Job>();
+      item.job->rpc = "TriangulateBatch";
+      item.job->arrived = Clock::now();
+      item.refused = {grpc::StatusCode::INVALID_ARGUMENT,
+                      "message " + std::to_string(requests_read_) +
+                          " of this stream is not a TriangulateRequest (it "
+                          "does not parse); the stream goes on"};
+    }
     std::shared_ptr<Job> job = item.job;
     bool start = false;
     {
@@ -123,7 +140,11 @@ void BatchReactor::WriteCurrent() {
     item.response->Next(&message_);
     item.written = item.response->done();
   }
-  StartWrite(&message_);
+  bool own_buffer = false;
+  message_bytes_.Clear();  // Serialize wants an empty buffer
+  grpc::SerializationTraits<v1::TriangulateResponse>::Serialize(
+      message_, &message_bytes_, &own_buffer);
+  StartWrite(&message_bytes_);
 }
 
 void BatchReactor::Pump(std::shared_ptr<Job> finished) {

@@ -26,9 +26,11 @@
 
 namespace dot::server {
 
+// Messages travel raw (grpc::ByteBuffer) and are parsed here, so that one
+// that does not parse fails alone (an Error naming its place in the stream)
+// instead of looking like the end of the stream.
 class BatchReactor final
-    : public grpc::ServerBidiReactor<v1::TriangulateRequest,
-                                     v1::TriangulateResponse> {
+    : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer> {
  public:
   BatchReactor(JobRunner* runner, grpc::CallbackServerContext* context);
 
@@ -75,8 +77,10 @@ class BatchReactor final
   std::set<std::shared_ptr<Job>> running_;
   std::deque<Item> outbox_;      // finished or refused, waiting to be written
   std::optional<Item> current_;  // being written
-  v1::TriangulateRequest request_;
+  grpc::ByteBuffer request_;     // the read in flight
+  int64_t requests_read_ = 0;
   v1::TriangulateResponse message_;
+  grpc::ByteBuffer message_bytes_;  // message_, serialized, being written
 };
 
 }  // namespace dot::server

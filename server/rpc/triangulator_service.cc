@@ -29,7 +29,7 @@ TriangulatorService::Triangulate(grpc::CallbackServerContext* context,
   return new TriangulateReactor(runner_, context, *request);
 }
 
-grpc::ServerBidiReactor<v1::TriangulateRequest, v1::TriangulateResponse>*
+grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>*
 TriangulatorService::TriangulateBatch(grpc::CallbackServerContext* context) {
   return new BatchReactor(runner_, context);
 }

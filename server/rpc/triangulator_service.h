@@ -13,7 +13,17 @@
 
 namespace dot::server {
 
-class TriangulatorService final : public v1::Triangulator::CallbackService {
+// TriangulateBatch takes its messages raw: gRPC reports a message that does
+// not parse as the end of the stream, so the reactor parses them itself and
+// fails such an item alone (BatchReactor).
+using TriangulatorCallbackBase =
+    v1::Triangulator::WithCallbackMethod_Triangulate<
+        v1::Triangulator::WithRawCallbackMethod_TriangulateBatch<
+            v1::Triangulator::WithCallbackMethod_GetServerInfo<
+                v1::Triangulator::WithCallbackMethod_GetSource<
+                    v1::Triangulator::Service>>>>;
+
+class TriangulatorService final : public TriangulatorCallbackBase {
  public:
   // `cache` and `helpers` may be null (they only shape GetServerInfo here).
   TriangulatorService(JobRunner* runner, const SpaceCache* cache,
@@ -22,8 +32,8 @@ class TriangulatorService final : public v1::Triangulator::CallbackService {
   grpc::ServerWriteReactor<v1::TriangulateResponse>* Triangulate(
       grpc::CallbackServerContext* context,
       const v1::TriangulateRequest* request) override;
-  grpc::ServerBidiReactor<v1::TriangulateRequest, v1::TriangulateResponse>*
-  TriangulateBatch(grpc::CallbackServerContext* context) override;
+  grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* TriangulateBatch(
+      grpc::CallbackServerContext* context) override;
   grpc::ServerUnaryReactor* GetServerInfo(
       grpc::CallbackServerContext* context,
       const v1::GetServerInfoRequest* request, v1::ServerInfo* info) override;
