@@ -111,6 +111,10 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
       "DOT_MAX_CONNECTION_AGE_S",
       "close client connections after this long so load rebalances across "
       "replicas (0: never)");
+  Add(app, "--listener-patience-s", &c->listener_patience_s,
+      "DOT_LISTENER_PATIENCE_S",
+      "exit 70 (for a supervisor to restart) when connections wait this long "
+      "unaccepted, as after running out of file descriptors (0: never)");
   Add(app, "--log-level", &c->log_level, "DOT_LOG_LEVEL",
       "trace, debug, info, warn, error or off");
   Add(app, "--source-archive", &s.source_archive, "DOT_SOURCE_ARCHIVE",

@@ -36,6 +36,10 @@ struct ServerConfig {
   int64_t cache_bytes = int64_t{256} << 20;  // search-space cache; 0: off
   int drain_seconds = 20;
   int max_connection_age_s = 300;  // 0: never recycle connections
+  // Connections left waiting this long in the kernel's accept queue mean
+  // gRPC stopped accepting (it does after running out of file
+  // descriptors): dot-server then drains and exits 70. 0: no watchdog.
+  int listener_patience_s = 20;
   std::string log_level = "info";
   // Set by FinalizeConfig: adjustments it made, for the start-up log.
   std::vector<std::string> notes;

@@ -3,13 +3,20 @@
 #include <malloc.h>
 #include <signal.h>
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "config.h"
 #include "dot_server.h"
+#include "listener_watchdog.h"
+
+// Exit status when the listener stopped accepting (EX_SOFTWARE).
+constexpr int kExitListenerDead = 70;
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -41,12 +48,24 @@ int main(int argc, char** argv) {
     mallopt(M_TRIM_THRESHOLD, keep);
   }
 
+  // Every connection costs a file descriptor: use all the hard limit
+  // allows (gRPC stops accepting for good once it runs out; see
+  // listener_watchdog.h).
+  rlimit files{};
+  if (getrlimit(RLIMIT_NOFILE, &files) == 0 &&
+      files.rlim_cur < files.rlim_max) {
+    files.rlim_cur = files.rlim_max;
+    setrlimit(RLIMIT_NOFILE, &files);
+  }
+
   // Signals are taken synchronously by this thread; every other thread
-  // (gRPC's, the pool's) inherits the blocked mask.
+  // (gRPC's, the pool's) inherits the blocked mask. SIGUSR1 comes from the
+  // listener watchdog.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGUSR1);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   std::string error;
@@ -55,10 +74,24 @@ int main(int argc, char** argv) {
     spdlog::error("{}", error);
     return 1;
   }
+  std::unique_ptr<dot::server::ListenerWatchdog> watchdog;
+  if (config.listener_patience_s > 0) {
+    dot::server::ListenerWatchdogOptions options;
+    options.patience = std::chrono::seconds(config.listener_patience_s);
+    watchdog = std::make_unique<dot::server::ListenerWatchdog>(
+        server->port(), options, [](const std::string& why) {
+          spdlog::error("{}; exiting so that a supervisor restarts it", why);
+          kill(getpid(), SIGUSR1);
+        });
+  }
   int sig = 0;
   sigwait(&signals, &sig);
-  spdlog::info("received {}, shutting down",
-               sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  const bool deaf = sig == SIGUSR1;
+  if (!deaf) {
+    spdlog::info("received {}, shutting down",
+                 sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  }
+  watchdog.reset();
   server->Drain(std::chrono::seconds(config.drain_seconds));
-  return 0;
+  return deaf ? kExitListenerDead : 0;
 }

@@ -22,18 +22,6 @@ namespace {
 using grpc::health::v1::HealthCheckResponse;
 using Clock = std::chrono::steady_clock;
 
-int FreeLoopbackPort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof addr;
-  ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  ::close(fd);
-  return ntohs(addr.sin_port);
-}
-
 // A TCP connection to 127.0.0.1:port; -1 when refused.
 int Connect(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -82,7 +70,7 @@ TEST(EndpointsTest, MetricsAnswerWhileSlowClientsHoldConnections) {
   GTEST_SKIP() << "civetweb's thread stacks are too small for ASan";
 #endif
   auto config = testing::LoopbackConfig();
-  config.metrics.port = FreeLoopbackPort();
+  config.metrics.port = testing::FreeLoopbackPort();
   auto s = testing::StartServer(config);
   ASSERT_TRUE(s.server);
   EXPECT_EQ(config.metrics.bind, "127.0.0.1");  // the default

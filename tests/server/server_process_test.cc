@@ -24,20 +24,9 @@ extern char** environ;
 namespace dot {
 namespace {
 
-int FreeLoopbackPort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-  socklen_t len = sizeof addr;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  ::close(fd);
-  return ntohs(addr.sin_port);
-}
-
 TEST(ServerProcessTest, SigtermDrainsInFlightWorkAndExitsZero) {
-  const std::string address = "127.0.0.1:" + std::to_string(FreeLoopbackPort());
+  const std::string address =
+      "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
   std::vector<std::string> args = {DOT_SERVER_PATH,
                                    "--listen",
                                    address,
@@ -93,6 +82,67 @@ TEST(ServerProcessTest, ProgressIsStreamedForLongRuns) {
     EXPECT_GE(seen[i].elapsed_ms(), seen[i - 1].elapsed_ms());
     EXPECT_GE(seen[i].stage(), seen[i - 1].stage());
   }
+}
+
+// Out of file descriptors, gRPC 1.51 stops accepting for good; the server
+// must not live on deaf: its listener watchdog makes it drain and exit 70
+// for a supervisor to restart it.
+TEST(ServerProcessTest, ListenerThatStopsAcceptingExitsNonZero) {
+  const int port = testing::FreeLoopbackPort();
+  const std::string address = "127.0.0.1:" + std::to_string(port);
+  std::vector<std::string> args = {"/usr/bin/prlimit",
+                                   "--nofile=128:128",
+                                   DOT_SERVER_PATH,
+                                   "--listen",
+                                   address,
+                                   "--metrics-port",
+                                   "0",
+                                   "--log-level",
+                                   "error",
+                                   "--listener-patience-s",
+                                   "2"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  ASSERT_EQ(::posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(),
+                          environ),
+            0);
+  auto channel =
+      grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+  ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
+                                        std::chrono::seconds(20)));
+  // Connections that never speak HTTP/2 use up the server's descriptors.
+  std::vector<int> idle;
+  for (int i = 0; i < 200; ++i) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(static_cast<uint16_t>(port));
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0) {
+      idle.push_back(fd);
+    } else {
+      ::close(fd);
+    }
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  for (int fd : idle) ::close(fd);
+  int status = 0;
+  pid_t ended = 0;
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while ((ended = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (ended == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "the server lived on without accepting connections";
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 70);
 }
 
 }  // namespace
