@@ -77,7 +77,7 @@ struct CellBudget {
             std::to_string(cells) + " cells after " + std::to_string(inserted) +
             " of " + std::to_string(total) + " points need about " +
             std::to_string(Bytes(cells) >> 20) +
-            " MiB with their faces and tables, over the budget of " +
+            " MiB with their faces and tables, which exceeds the budget of " +
             std::to_string(budget_bytes >> 20) + " MiB");
   }
 };
