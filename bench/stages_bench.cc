@@ -78,7 +78,7 @@ void BM_DynamicProgram(benchmark::State& state, bool bi) {
   }
   for (auto _ : state) {
     DpSolution sol;
-    benchmark::DoNotOptimize(bi ? SolveDot2(adj, w, unit, {0, 1}, {}, &sol)
+    benchmark::DoNotOptimize(bi ? SolveDot2(adj, w, unit, {}, {0, 1}, {}, &sol)
                                 : SolveDot1(adj, w, {}, &sol));
   }
 }

@@ -18,6 +18,7 @@
 #include "polygon/unit_scale.h"
 #include "search_space/all_triangles.h"
 #include "search_space/delaunay3d.h"
+#include "search_space/forbidden_edges.h"
 #include "search_space/planar_cdt.h"
 #include "search_space/prepared_space.h"
 #include "solve/adjacency.h"
@@ -105,7 +106,7 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
   DpSolution sol;
   if (bi) {
     s = SolveDot2(
-        adj, w, sp.unit_normals,
+        adj, w, sp.unit_normals, loop.EdgeNormalsByPosition(),
         {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
         control, &sol);
   } else {
@@ -156,10 +157,13 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
   return OkStatus();
 }
 
+using Chords = std::vector<std::pair<int32_t, int32_t>>;
+
 // The Delaunay search space of the loop, prepared for solving.
 Status PrepareDelaunay(const PlaneFit& fit, bool planar, bool unit_normals,
-                       bool bi, const Options& options, const Control& control,
-                       PreparedSpace* sp, Stats* stats) {
+                       bool bi, const Chords& forbidden, const Options& options,
+                       const Control& control, PreparedSpace* sp,
+                       Stats* stats) {
   Report(control, Stage::kDelaunay, 0);
   auto t0 = Clock::now();
   Status s;
@@ -177,14 +181,16 @@ Status PrepareDelaunay(const PlaneFit& fit, bool planar, bool unit_normals,
   stats->delaunay_ms = MsSince(t0);
   if (!s.ok()) return s;
   t0 = Clock::now();
+  DropForbiddenEdges(sp->loop, forbidden, &sp->triangles);
   s = BuildSpaceTables(unit_normals, options, control, bi, sp, stats);
   stats->adjacency_ms = MsSince(t0);
   return s;
 }
 
 // All triangles of the loop (GK1/GK2), prepared for solving.
-Status PrepareAll(const MetricWeights& weights, const Options& options,
-                  const Control& control, PreparedSpace* sp, Stats* stats) {
+Status PrepareAll(const MetricWeights& weights, const Chords& forbidden,
+                  const Options& options, const Control& control,
+                  PreparedSpace* sp, Stats* stats) {
   const int64_t n = sp->loop.size();
   if (n > options.all_space_hard_limit) {
     return MakeStatus(StatusCode::kResourceExhausted,
@@ -201,6 +207,7 @@ Status PrepareAll(const MetricWeights& weights, const Options& options,
   stats->delaunay_ms += MsSince(t0);
   if (!s.ok()) return s;
   t0 = Clock::now();
+  DropForbiddenEdges(sp->loop, forbidden, &sp->triangles);
   s = BuildSpaceTables(bi, options, control, bi, sp, stats);
   stats->adjacency_ms += MsSince(t0);
   return s;
@@ -239,7 +246,10 @@ Result Triangulate(const Problem& problem, const Options& options,
   if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
   const MetricWeights work_weights = WorkWeights(weights, scale);
 
-  PolygonLoop loop{std::move(work), problem.normals, {}};
+  PolygonLoop loop{std::move(work), problem.normals, {}, {}};
+  for (const Vec3& n : problem.edge_face_normals) {
+    loop.edge_normals.push_back(Normalized(n));
+  }
   loop.ids.resize(problem.vertices.size());
   std::iota(loop.ids.begin(), loop.ids.end(), 0);
   r.stats.validate_ms = MsSince(t_start);
@@ -258,8 +268,9 @@ Result Triangulate(const Problem& problem, const Options& options,
     } else {
       auto fresh = std::make_shared<PreparedSpace>();
       fresh->loop = loop;
-      s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi, options,
-                          control, fresh.get(), &r.stats);
+      s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi,
+                          problem.forbidden_edges, options, control,
+                          fresh.get(), &r.stats);
       if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());
       space = std::move(fresh);
     }
@@ -271,7 +282,8 @@ Result Triangulate(const Problem& problem, const Options& options,
   if (options.space == SearchSpace::kAll || fallback) {
     auto fresh = std::make_shared<PreparedSpace>();
     fresh->loop = loop;
-    s = PrepareAll(work_weights, options, control, fresh.get(), &r.stats);
+    s = PrepareAll(work_weights, problem.forbidden_edges, options, control,
+                   fresh.get(), &r.stats);
     if (s.ok()) s = Solve(*fresh, work_weights, options, control, &r);
     space = std::move(fresh);
   }
@@ -293,8 +305,10 @@ Result Triangulate(const Problem& problem, const Options& options,
   }
   if (r.status.ok()) {
     Report(control, Stage::kTiling, 1);
-    r.metric_costs = ToCallerUnits(
-        EvaluateMetrics(solved.vertices, solved.normals, r.triangles), scale);
+    r.metric_costs =
+        ToCallerUnits(EvaluateMetrics(solved.vertices, solved.normals,
+                                      r.triangles, solved.edge_normals),
+                      scale);
     r.total_cost = WeightedTotal(weights, r.metric_costs);
     const bool metrics_finite =
         std::all_of(r.metric_costs.v.begin(), r.metric_costs.v.end(),

@@ -70,10 +70,15 @@ Vec3 UnitNormal(const std::vector<Vec3>& vertices, const Triangle& t);
 
 // Unweighted sum of every metric over a triangle set (bi-triangle metrics
 // over each edge shared by exactly two triangles), computed directly from the
-// triangles: the reference the solvers are checked against.
+// triangles: the reference the solvers are checked against. With
+// `edge_face_normals` (per vertex id v: the normal of the surface face
+// across the boundary edge that leaves v, as Problem::edge_face_normals;
+// zero: none), each boundary edge also adds the bending between that face
+// and the triangle on the edge.
 MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
                              const std::vector<Vec3>& normals,
-                             const std::vector<Triangle>& triangles);
+                             const std::vector<Triangle>& triangles,
+                             const std::vector<Vec3>& edge_face_normals = {});
 double WeightedTotal(const MetricWeights& w, const MetricValues& costs);
 
 }  // namespace dot

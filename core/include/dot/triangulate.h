@@ -74,6 +74,17 @@ struct Problem {
   std::vector<Vec3> vertices;  // polygon, closed from last to first
   std::vector<Vec3> normals;   // empty, or one boundary normal per vertex
   MetricWeights weights;       // all zero means area alone
+  // Filling a hole of a surface: empty, or one per vertex i, the normal of
+  // the surface face across the polygon edge (i, i+1 mod n), oriented like
+  // the patch (the face runs i+1 -> i); a zero vector means no face there.
+  // The bi-triangle metrics then also price the bending between that face
+  // and the patch triangle on the edge (DOT2/GK2 and Result::metric_costs
+  // alike), so a patch meets its surroundings smoothly. Ignored by DOT1.
+  std::vector<Vec3> edge_face_normals;
+  // Chords (vertex index pairs that are not polygon edges) no triangle of
+  // the result may use: edges the surrounding mesh already has, which the
+  // patch would make non-manifold.
+  std::vector<std::pair<int32_t, int32_t>> forbidden_edges;
 };
 
 // How Triangulate searches. A default-constructed Options is the

@@ -56,7 +56,8 @@ MetricValues PerTriangleMetrics(const std::vector<Vec3>& vertices,
 
 MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
                              const std::vector<Vec3>& normals,
-                             const std::vector<Triangle>& triangles) {
+                             const std::vector<Triangle>& triangles,
+                             const std::vector<Vec3>& edge_face_normals) {
   MetricValues sum;
   std::vector<Vec3> unit(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
@@ -64,13 +65,20 @@ MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
     for (Metric k : kAllMetrics) sum[k] += m[k];
     unit[i] = UnitNormal(vertices, triangles[i]);
   }
-  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
-    // Only manifold edges (exactly two triangles) have a dihedral angle.
-    if (edge.size() != 2) return;
-    const double theta =
-        BendingAngle(unit[edge[0].triangle], unit[edge[1].triangle]);
+  auto add_bend = [&](const Vec3& a, const Vec3& b) {
+    const double theta = BendingAngle(a, b);
     sum[Metric::kDihedral] += theta;
     sum[Metric::kSquaredDihedral] += theta * theta;
+  };
+  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
+    // Only manifold edges (exactly two triangles) have a dihedral angle; a
+    // boundary edge has one against the surface face across it, if given.
+    if (edge.size() == 2) {
+      add_bend(unit[edge[0].triangle], unit[edge[1].triangle]);
+    } else if (edge.size() == 1 && !edge_face_normals.empty()) {
+      const Vec3& face = edge_face_normals[edge[0].from()];
+      if (Norm(face) > 0) add_bend(face, unit[edge[0].triangle]);
+    }
   });
   return sum;
 }

@@ -57,6 +57,35 @@ Status CheckProblem(const Problem& problem, const Options& options) {
         "metric normal_deviation has a weight but no boundary normals were "
         "given");
   }
+  if (!problem.edge_face_normals.empty()) {
+    if (problem.edge_face_normals.size() != v.size()) {
+      return InvalidArgument(std::to_string(problem.edge_face_normals.size()) +
+                             " edge face normals given for " +
+                             std::to_string(n) +
+                             " vertices; give one per polygon edge or none");
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!IsFinite(problem.edge_face_normals[i])) {
+        return InvalidArgument("edge face normal " + std::to_string(i) + " " +
+                               FormatVec(problem.edge_face_normals[i]) +
+                               " is not finite");
+      }
+    }
+  }
+  for (const auto& [a, b] : problem.forbidden_edges) {
+    const std::string name =
+        "forbidden edge " + std::to_string(a) + "-" + std::to_string(b);
+    if (a < 0 || b < 0 || a >= n || b >= n || a == b) {
+      return InvalidArgument(name +
+                             " does not join two distinct vertices of "
+                             "the polygon");
+    }
+    if ((a + 1) % n == b || (b + 1) % n == a) {
+      return InvalidArgument(name +
+                             " is a polygon edge; every polygon edge "
+                             "is part of the result");
+    }
+  }
   for (int i = 0; i < n; ++i) {
     const int j = (i + 1) % n;
     if (v[i] == v[j]) {

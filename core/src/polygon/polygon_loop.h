@@ -14,13 +14,24 @@ namespace dot {
 struct PolygonLoop {
   std::vector<Vec3> vertices;  // input vertices, then inserted ones
   std::vector<Vec3> normals;   // parallel to vertices, or empty
-  std::vector<int32_t> ids;    // the loop: position -> vertex id
+  // Parallel to vertices, or empty: the normal of the surface face across
+  // the loop edge that starts at the vertex (Problem::edge_face_normals).
+  std::vector<Vec3> edge_normals;
+  std::vector<int32_t> ids;  // the loop: position -> vertex id
 
   int32_t size() const { return static_cast<int32_t>(ids.size()); }
   std::vector<Vec3> Points() const {
     std::vector<Vec3> p;
     p.reserve(ids.size());
     for (int32_t id : ids) p.push_back(vertices[id]);
+    return p;
+  }
+  // edge_normals in loop order (position i: the edge i -> i+1), or empty.
+  std::vector<Vec3> EdgeNormalsByPosition() const {
+    std::vector<Vec3> p;
+    if (edge_normals.empty()) return p;
+    p.reserve(ids.size());
+    for (int32_t id : ids) p.push_back(edge_normals[id]);
     return p;
   }
 };

@@ -90,6 +90,10 @@ Status Delaunay3dFaces(const Options& options, const Control& control,
           loop->normals.push_back(Norm(n) > 0 ? Normalized(n)
                                               : loop->normals[a]);
         }
+        // Both halves lie on the face across the split edge.
+        if (!loop->edge_normals.empty()) {
+          loop->edge_normals.push_back(loop->edge_normals[a]);
+        }
       }
     }
     loop->ids = std::move(ids);

@@ -18,7 +18,8 @@ int64_t CapacityBytes(const V& v) {
 
 int64_t PreparedSpace::Bytes() const {
   return static_cast<int64_t>(sizeof(*this)) + CapacityBytes(loop.vertices) +
-         CapacityBytes(loop.normals) + CapacityBytes(loop.ids) +
+         CapacityBytes(loop.normals) +
+         CapacityBytes(loop.edge_normals) + CapacityBytes(loop.ids) +
          CapacityBytes(triangles) + adjacency.Bytes() +
          CapacityBytes(unit_normals);
 }
@@ -38,6 +39,16 @@ std::string SpaceCacheKey(const Problem& problem, const Options& options) {
              sizeof(Vec3) * problem.vertices.size());
   key.append(reinterpret_cast<const char*>(problem.normals.data()),
              sizeof(Vec3) * problem.normals.size());
+  // Not weight-like: the cached loop carries the edge normals, and the
+  // forbidden chords shape the candidates.
+  AppendBytes(problem.edge_face_normals.size(), &key);
+  key.append(reinterpret_cast<const char*>(problem.edge_face_normals.data()),
+             sizeof(Vec3) * problem.edge_face_normals.size());
+  AppendBytes(problem.forbidden_edges.size(), &key);
+  for (const auto& [a, b] : problem.forbidden_edges) {
+    AppendBytes(a, &key);
+    AppendBytes(b, &key);
+  }
   return key;
 }
 

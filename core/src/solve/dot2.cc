@@ -45,7 +45,8 @@ struct InnerCandidate {
 }  // namespace
 
 Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
-                 const std::vector<Vec3>& unit_normals, BendingWeights bending,
+                 const std::vector<Vec3>& unit_normals,
+                 const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out) {
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t edges = adj.edge_count();
@@ -63,6 +64,11 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
     const double theta = BendingAngle(a, b);
     return bending.dihedral * theta + bending.squared_dihedral * theta * theta;
   };
+  // The bending against the surface face across polygon edge `pos`, if any.
+  auto boundary_bend = [&](int32_t pos, const Vec3& patch_normal) {
+    if (edge_normals.empty() || Norm(edge_normals[pos]) == 0) return 0.0;
+    return bend(edge_normals[pos], patch_normal);
+  };
 
   std::vector<InnerCandidate> cand;
   double root_cost = kInf;
@@ -70,7 +76,10 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   for (int32_t e = 0; e < edges; ++e) {
     const int32_t ob = adj.outer_begin[e], oe = adj.outer_begin[e + 1];
     if (adj.IsPolygonEdge(e)) {
-      for (int32_t i = ob; i < oe; ++i) slot_cost[adj.outer[i]] = 0;
+      for (int32_t i = ob; i < oe; ++i) {
+        const int32_t slot = adj.outer[i];
+        slot_cost[slot] = boundary_bend(adj.edge_lo[e], unit_normals[slot / 2]);
+      }
       continue;
     }
     cand.clear();
@@ -87,8 +96,16 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
                 return x.b < y.b || (x.b == y.b && x.rank < y.rank);
               });
     if (e == adj.root) {
-      root_cost = cand.front().b;
-      root_arg = cand.front().u;
+      // The root is the polygon edge n-1 -> 0: its inner triangle may bend
+      // against a surface face too.
+      for (const InnerCandidate& c : cand) {
+        if (c.b + min_bend >= root_cost) break;
+        const double v = c.b + boundary_bend(adj.n - 1, c.normal);
+        if (v < root_cost) {
+          root_cost = v;
+          root_arg = c.u;
+        }
+      }
       continue;
     }
     for (int32_t i = ob; i < oe; ++i) {

@@ -38,8 +38,12 @@ struct BendingWeights {
   double dihedral = 0;          // weight of theta
   double squared_dihedral = 0;  // weight of theta^2
 };
+// `edge_normals`: empty, or per polygon position i the unit normal of the
+// surface face across the polygon edge i -> i+1 (zero: none); the bending
+// between it and the patch triangle on that edge is priced too.
 Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
-                 const std::vector<Vec3>& unit_normals, BendingWeights bending,
+                 const std::vector<Vec3>& unit_normals,
+                 const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out);
 
 }  // namespace dot

@@ -30,6 +30,31 @@ TEST(InputTest, TooFewVertices) {
   ExpectRejected({}, "polygon has 0 vertices");
 }
 
+TEST(InputTest, EdgeFaceNormalsAndForbiddenEdges) {
+  Problem p = Square();
+  p.edge_face_normals = {{0, 0, 1}};
+  ExpectRejected(p, "1 edge face normals given for 4 vertices");
+  p.edge_face_normals = {{0, 0, 1}, {}, {0, 0, NAN}, {0, 0, 1}};
+  ExpectRejected(p, "edge face normal 2 (0, 0, nan) is not finite");
+  p.edge_face_normals.clear();
+  p.forbidden_edges = {{0, 4}};
+  ExpectRejected(p, "forbidden edge 0-4 does not join two distinct vertices");
+  p.forbidden_edges = {{3, 0}};
+  ExpectRejected(p, "forbidden edge 3-0 is a polygon edge");
+  // Both diagonals of a quadrilateral forbidden: nothing is left.
+  p.forbidden_edges = {{0, 2}, {1, 3}};
+  Options all;
+  all.space = SearchSpace::kAll;
+  EXPECT_EQ(Triangulate(p, all).status.code, StatusCode::kNoTriangulation);
+  p.forbidden_edges = {{0, 2}};
+  const Result r = Triangulate(p, all);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  for (const Triangle& t : r.triangles) {
+    EXPECT_FALSE((t[0] == 0 || t[1] == 0 || t[2] == 0) &&
+                 (t[0] == 2 || t[1] == 2 || t[2] == 2));
+  }
+}
+
 TEST(InputTest, NonFiniteCoordinates) {
   Problem p = Square();
   p.vertices[2].y = std::numeric_limits<double>::quiet_NaN();

@@ -35,7 +35,7 @@ std::vector<Triangle> SolveOver(const std::vector<Vec3>& loop,
   }
   DpSolution sol;
   const Status s = bi ? SolveDot2(adj, std::vector<double>(w.size(), 0), unit,
-                                  {0, 1}, {}, &sol)
+                                  {}, {0, 1}, {}, &sol)
                       : SolveDot1(adj, w, {}, &sol);
   EXPECT_TRUE(s.ok()) << s.message;
   std::vector<Triangle> out;

@@ -10,6 +10,7 @@
 
 #include "dot/dot.h"
 #include "fixtures/brute_force.h"
+#include "mesh/edge_index.h"
 #include "search_space/delaunay_cgal.h"
 #include "search_space/faces_of_tetrahedra.h"
 
@@ -138,6 +139,73 @@ TEST(OptimalityTest, DotAndGkEqualBruteForceOnRandomPolygons) {
   std::printf("solved %d, no triangulation %d\n", solved, no_triangulation);
   EXPECT_GT(solved, 1000);
   EXPECT_GT(no_triangulation, 10);
+}
+
+// Hole filling: bending against the faces across the polygon edges, and
+// chords the surrounding mesh already has, against brute force over the
+// same space minus those chords.
+TEST(OptimalityTest, EdgeFaceNormalsAndForbiddenChordsEqualBruteForce) {
+  std::mt19937_64 rng(20261124);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int solved = 0, bent = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const int n = 5 + trial % 5;  // 5..9
+    Problem p = RandomProblem(rng, n);
+    for (int i = 0; i < n; ++i) {
+      // Some edges have no face across them.
+      p.edge_face_normals.push_back(
+          i % 4 == 3 ? Vec3{} : Normalized(Vec3{u(rng), u(rng), 1.0}));
+    }
+    const int a = trial % n, b = (a + 2 + trial % (n - 3)) % n;
+    p.forbidden_edges = {{a, b}};
+    const uint64_t key = UndirectedEdgeKey(a, b);
+    for (const auto& [space, reference] :
+         {std::pair{SearchSpace::kDelaunay, DelaunaySpace(p.vertices)},
+          std::pair{SearchSpace::kAll, AllSpace(n)}}) {
+      std::set<Triangle> allowed;
+      for (const Triangle& t : reference) {
+        if (UndirectedEdgeKey(t[0], t[1]) != key &&
+            UndirectedEdgeKey(t[1], t[2]) != key &&
+            UndirectedEdgeKey(t[0], t[2]) != key) {
+          allowed.insert(t);
+        }
+      }
+      for (const Mix& mix : MetricMixes()) {
+        p.weights = mix.w;
+        const std::string what = "trial " + std::to_string(trial) + " " +
+                                 mix.name +
+                                 (space == SearchSpace::kAll ? " all" : "");
+        const auto ref = testing::BruteForceMinimum(
+            p.vertices, p.normals, allowed, mix.w, p.edge_face_normals);
+        Options o;
+        o.space = space;
+        const Result r = Triangulate(p, o);
+        if (ref.triangulations == 0) {
+          EXPECT_EQ(r.status.code, StatusCode::kNoTriangulation) << what;
+          continue;
+        }
+        ASSERT_TRUE(r.status.ok()) << what << ": " << r.status.message;
+        ExpectNear(ref.best, r.total_cost, what);
+        for (const Triangle& t : r.triangles) {
+          EXPECT_NE(UndirectedEdgeKey(t[0], t[1]), key) << what;
+          EXPECT_NE(UndirectedEdgeKey(t[1], t[2]), key) << what;
+          EXPECT_NE(UndirectedEdgeKey(t[0], t[2]), key) << what;
+        }
+        ++solved;
+        if (HasBiTriangleWeight(mix.w)) {
+          const MetricValues plain =
+              EvaluateMetrics(r.vertices, p.normals, r.triangles);
+          if (r.metric_costs[Metric::kDihedral] >
+              plain[Metric::kDihedral] + 1e-9) {
+            ++bent;
+          }
+        }
+      }
+    }
+  }
+  std::printf("solved %d, with boundary bending %d\n", solved, bent);
+  EXPECT_GT(solved, 1000);
+  EXPECT_GT(bent, 200);
 }
 
 TEST(OptimalityTest, AutoFallsBackToAllWhenNoDelaunayTriangulation) {

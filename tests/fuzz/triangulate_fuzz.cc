@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// libFuzzer target: dot::Triangulate on tiny polygons (4 to 10 vertices)
+// decoded from the input, with random coordinates (small integers, the same
+// at an extreme power-of-two scale or offset, dyadic fractions, raw bits),
+// normals, weights (bi-triangle ones included) and options (search space,
+// backend, edge protection, output validation, planarity tolerance).
+//
+// Oracle, checked with the project's exact validator (dot/validate.h):
+//  - an OK result is a disk whose boundary is the polygon (inserted vertices
+//    in place), consistently oriented so that the polygon runs i -> i+1, the
+//    input's vertices returned unchanged; intersection-free unless the
+//    search space was explicitly kAll, whose intersecting pairs must then be
+//    counted right; its costs are finite;
+//  - a failure is a known non-OK code with a message;
+//  - progress fractions stay in [0, 1];
+//  - solved again through a SpaceCache (the second call served from it),
+//    an OK answer is the same triangles at the same cost.
+// A violated oracle abort()s, which libFuzzer reports as a crash.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dot/dot.h"
+
+namespace {
+
+[[noreturn]] void Fail(const std::string& what, const dot::Result& r) {
+  std::fprintf(stderr,
+               "ORACLE FAILED: %s (status %s: %s; space %s, %zu "
+               "triangles)\n",
+               what.c_str(),
+               std::string(dot::StatusCodeName(r.status.code)).c_str(),
+               r.status.message.c_str(),
+               std::string(dot::SpaceUsedName(r.space_used)).c_str(),
+               r.triangles.size());
+  std::abort();
+}
+
+double RawDouble(FuzzedDataProvider& in) {
+  const uint64_t bits = in.ConsumeIntegral<uint64_t>();
+  double d;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+
+double SmallInt(FuzzedDataProvider& in, int bound) {
+  return in.ConsumeIntegralInRange<int>(-bound, bound);
+}
+
+double Weight(FuzzedDataProvider& in) {
+  switch (in.ConsumeIntegralInRange<int>(0, 7)) {
+    case 4:
+    case 5:
+      return SmallInt(in, 3);
+    case 6:
+      return std::ldexp(SmallInt(in, 3), in.ConsumeIntegralInRange(-60, 60));
+    case 7:
+      return RawDouble(in);
+    default:
+      return 0;
+  }
+}
+
+std::vector<dot::Vec3> Vertices(FuzzedDataProvider& in, int n) {
+  const int mode = in.ConsumeIntegralInRange(0, 4);
+  const int exponent = in.ConsumeIntegralInRange(-1074, 1020);
+  const double offset =
+      std::ldexp(SmallInt(in, 3), in.ConsumeIntegralInRange(0, 60));
+  auto coordinate = [&]() -> double {
+    switch (mode) {
+      case 0:  // small integers
+        return SmallInt(in, 3);
+      case 1:  // the same at any scale: the unit scaling is exact
+        return std::ldexp(SmallInt(in, 3), exponent);
+      case 2:  // dyadic fractions: nearly degenerate configurations
+        return SmallInt(in, 3) + in.ConsumeIntegralInRange(-8, 8) / 256.0;
+      case 3:  // small integers far from the origin
+        return offset + SmallInt(in, 3);
+      default:  // anything, non-finite included
+        return RawDouble(in);
+    }
+  };
+  std::vector<dot::Vec3> v(n);
+  for (dot::Vec3& p : v) {
+    p.x = coordinate();
+    p.y = coordinate();
+    p.z = coordinate();
+  }
+  return v;
+}
+
+bool SameBits(const dot::Vec3& a, const dot::Vec3& b) {
+  return std::memcmp(&a, &b, sizeof(dot::Vec3)) == 0;
+}
+
+void CheckOk(const dot::Problem& problem, const dot::Options& options,
+             const dot::Result& r) {
+  const auto n = static_cast<int32_t>(problem.vertices.size());
+  if (r.triangles.empty()) Fail("OK without triangles", r);
+  if (r.vertices.size() < problem.vertices.size()) Fail("vertices lost", r);
+  for (int32_t i = 0; i < n; ++i) {
+    if (!SameBits(r.vertices[i], problem.vertices[i])) {
+      Fail("input vertex " + std::to_string(i) + " changed", r);
+    }
+  }
+  // The loop: the input's vertices in order, inserted ones between them.
+  if (r.polygon.size() != r.vertices.size()) Fail("loop size", r);
+  if (r.inserted.size() != r.vertices.size() - problem.vertices.size()) {
+    Fail("inserted count", r);
+  }
+  if (!options.protect_edges && !r.inserted.empty()) {
+    Fail("vertices inserted without protect_edges", r);
+  }
+  int32_t next_input = 0;
+  for (int32_t id : r.polygon) {
+    if (id < 0 || id >= static_cast<int32_t>(r.vertices.size())) {
+      Fail("loop index out of range", r);
+    }
+    if (id < n && id != next_input++) Fail("loop out of order", r);
+  }
+  if (next_input != n) Fail("loop misses input vertices", r);
+
+  // Edge-manifold disk spanning the polygon; its intersections separately.
+  const dot::MeshReport report =
+      dot::ValidateMesh(r.vertices, r.polygon, r.triangles, false);
+  if (!report.valid()) Fail("invalid mesh: " + report.first_problem, r);
+  const int64_t pairs = dot::CountIntersectingPairs(r.vertices, r.triangles);
+  if (options.space == dot::SearchSpace::kAll) {
+    if (r.intersecting_pairs != pairs) {
+      Fail("reported " + std::to_string(r.intersecting_pairs) +
+               " intersecting pairs, the validator counts " +
+               std::to_string(pairs),
+           r);
+    }
+  } else {
+    if (pairs != 0) {
+      Fail(std::to_string(pairs) + " intersecting pairs in an OK result", r);
+    }
+    if (r.intersecting_pairs > 0 ||
+        (options.validate_output && r.intersecting_pairs != 0)) {
+      Fail("intersecting_pairs " + std::to_string(r.intersecting_pairs), r);
+    }
+  }
+  // Oriented so that the polygon runs i -> i+1: every loop edge is a
+  // triangle side in that direction.
+  const size_t m = r.polygon.size();
+  for (size_t i = 0; i < m; ++i) {
+    const int32_t a = r.polygon[i], b = r.polygon[(i + 1) % m];
+    const bool found = std::any_of(
+        r.triangles.begin(), r.triangles.end(), [a, b](const dot::Triangle& t) {
+          return (t[0] == a && t[1] == b) || (t[1] == a && t[2] == b) ||
+                 (t[2] == a && t[0] == b);
+        });
+    if (!found) {
+      Fail("loop edge " + std::to_string(a) + "->" + std::to_string(b) +
+               " is no triangle side in that direction",
+           r);
+    }
+  }
+  if (!std::isfinite(r.total_cost)) Fail("non-finite total cost", r);
+  for (double c : r.metric_costs.v) {
+    if (!std::isfinite(c)) Fail("non-finite metric cost", r);
+  }
+}
+
+void CheckFailure(const dot::Result& r) {
+  switch (r.status.code) {
+    case dot::StatusCode::kNoTriangulation:
+    case dot::StatusCode::kInvalidArgument:
+    case dot::StatusCode::kResourceExhausted:
+    case dot::StatusCode::kCancelled:
+    case dot::StatusCode::kDeadlineExceeded:
+    case dot::StatusCode::kInternal:
+      break;
+    default:
+      Fail("unknown status code", r);
+  }
+  if (r.status.message.empty()) Fail("failure without a message", r);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  FuzzedDataProvider in(data, size);
+  const int n = in.ConsumeIntegralInRange(4, 10);
+  dot::Problem problem;
+  problem.vertices = Vertices(in, n);
+  if (in.ConsumeIntegralInRange(0, 2) == 0) {
+    problem.normals.resize(n);
+    for (dot::Vec3& v : problem.normals) {
+      v = {SmallInt(in, 2), SmallInt(in, 2), SmallInt(in, 2)};
+    }
+  }
+  for (dot::Metric m : dot::kAllMetrics) problem.weights[m] = Weight(in);
+
+  dot::Options options;
+  options.space =
+      static_cast<dot::SearchSpace>(in.ConsumeIntegralInRange(0, 2));
+  options.protect_edges = in.ConsumeBool();
+  options.validate_output = in.ConsumeBool();
+  if (dot::TetgenAvailable() && in.ConsumeIntegralInRange(0, 3) == 0) {
+    options.delaunay = dot::DelaunayBackend::kTetgen;
+  }
+  switch (in.ConsumeIntegralInRange(0, 3)) {
+    case 1:
+      options.planar_tolerance = 0;
+      break;
+    case 2:
+      options.planar_tolerance = 1e-2;
+      break;
+    default:
+      break;  // the default, 1e-6
+  }
+  options.max_inserted_vertices = 200;
+  const bool via_cache = in.ConsumeIntegralInRange(0, 3) == 0;
+
+  dot::Control control;
+  control.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+  control.progress = [](dot::Stage, double fraction) {
+    if (!(fraction >= 0 && fraction <= 1)) {
+      std::fprintf(stderr, "ORACLE FAILED: progress fraction %g\n", fraction);
+      std::abort();
+    }
+  };
+  dot::SpaceCache cache(int64_t{64} << 20);
+  if (via_cache) control.space_cache = &cache;
+
+  dot::Result r = dot::Triangulate(problem, options, control);
+  if (r.status.ok()) {
+    CheckOk(problem, options, r);
+  } else {
+    CheckFailure(r);
+  }
+  if (via_cache) {
+    const dot::Result again = dot::Triangulate(problem, options, control);
+    if (again.status.ok()) {
+      CheckOk(problem, options, again);
+    } else {
+      CheckFailure(again);
+    }
+    const auto timed_out = [](const dot::Result& x) {
+      return x.status.code == dot::StatusCode::kDeadlineExceeded;
+    };
+    if (!timed_out(r) && !timed_out(again)) {
+      if (again.status.code != r.status.code) {
+        Fail("from the cache: status " +
+                 std::string(dot::StatusCodeName(again.status.code)) +
+                 ", first " + std::string(dot::StatusCodeName(r.status.code)),
+             again);
+      }
+      if (r.status.ok() && (again.triangles != r.triangles ||
+                            again.total_cost != r.total_cost)) {
+        Fail("from the cache: other triangles or cost", again);
+      }
+    }
+  }
+  return 0;
+}
