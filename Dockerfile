@@ -8,7 +8,7 @@ RUN apt-get update \
  && apt-get install -y --no-install-recommends \
       cmake ninja-build g++ pkg-config \
       libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler \
-      libtet1.5-dev libcgal-dev libtbb-dev libspdlog-dev libcli11-dev prometheus-cpp-dev \
+      libtet1.5-dev libcgal-dev libeigen3-dev libtbb-dev libspdlog-dev libcli11-dev prometheus-cpp-dev \
  && rm -rf /var/lib/apt/lists/*
 WORKDIR /src
 COPY . .

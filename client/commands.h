@@ -26,6 +26,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx);
 void AddInfoCommands(CLI::App& app, Context* ctx);  // info, source
 void AddLoadCommand(CLI::App& app, Context* ctx);
 void AddGenerateCommand(CLI::App& app, Context* ctx);
+void AddFillHolesCommand(CLI::App& app, Context* ctx);
 
 // Shared helpers.
 // Polygon files named, or found (*.xyz, *.txt, *.obj) in a directory.

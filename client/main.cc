@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   dot::client::AddInfoCommands(app, &ctx);
   dot::client::AddLoadCommand(app, &ctx);
   dot::client::AddGenerateCommand(app, &ctx);
+  dot::client::AddFillHolesCommand(app, &ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config git ccache
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libtet1.5-dev libcgal-dev libtbb-dev libspdlog-dev libcli11-dev prometheus-cpp-dev
+  libtet1.5-dev libcgal-dev libeigen3-dev libtbb-dev libspdlog-dev libcli11-dev prometheus-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcgal-demo   # real meshes (data.tar.gz) for the hole tests
   openssl curl gnuplot-nox

@@ -236,6 +236,19 @@ Result Triangulate(const Problem& problem, const Options& options,
   std::vector<Vec3> work;
   work.reserve(problem.vertices.size());
   for (const Vec3& v : problem.vertices) work.push_back(scale.ToWork(v));
+  // Exact unless a coordinate falls below the normal range on the way
+  // down: then the predicates would decide another polygon than the
+  // caller's.
+  for (size_t i = 0; i < work.size(); ++i) {
+    if (!(scale.ToCaller(work[i]) == problem.vertices[i])) {
+      r.status = InvalidArgument(
+          "vertex " + std::to_string(i) + " " + FormatVec(problem.vertices[i]) +
+          " has a coordinate too small to keep its precision at the "
+          "polygon's scale (more than 2^1022 times smaller than the largest "
+          "coordinate, or subnormal); round it to zero");
+      return r;
+    }
+  }
   const PlaneFit fit = FitPlane(work);
   r.status = CheckNotCollinear(fit, static_cast<int>(problem.vertices.size()),
                                options);
@@ -293,10 +306,19 @@ Result Triangulate(const Problem& problem, const Options& options,
   const PolygonLoop& solved = space != nullptr ? space->loop : loop;
   r.stats.n = solved.size();
   // Back in the caller's coordinates: the input's exactly, then inserted
-  // ones (the inverse scaling is exact too).
+  // ones (the inverse scaling is exact too, unless it ends below the normal
+  // range: then the mesh the caller gets is not the one solved).
   r.vertices = problem.vertices;
   for (size_t i = problem.vertices.size(); i < solved.vertices.size(); ++i) {
     r.vertices.push_back(scale.ToCaller(solved.vertices[i]));
+    if (r.status.ok() &&
+        !(scale.ToWork(r.vertices.back()) == solved.vertices[i])) {
+      r.status = InvalidArgument(
+          "edge protection inserted vertex " + std::to_string(i) +
+          ", which a double cannot hold at the polygon's scale (it falls "
+          "below the normal range); scale the polygon up");
+      r.triangles.clear();
+    }
   }
   r.polygon = solved.ids;
   for (auto id = static_cast<int32_t>(problem.vertices.size());
@@ -310,9 +332,12 @@ Result Triangulate(const Problem& problem, const Options& options,
                                       r.triangles, solved.edge_normals),
                       scale);
     r.total_cost = WeightedTotal(weights, r.metric_costs);
+    // Only the weighted metrics count: an unweighted one may overflow in
+    // the caller's units (the area, from coordinates near 1e154 on).
     const bool metrics_finite =
-        std::all_of(r.metric_costs.v.begin(), r.metric_costs.v.end(),
-                    [](double c) { return std::isfinite(c); });
+        std::all_of(kAllMetrics.begin(), kAllMetrics.end(), [&](Metric m) {
+          return weights[m] == 0 || std::isfinite(r.metric_costs[m]);
+        });
     if (metrics_finite && !std::isfinite(r.total_cost)) {
       r.status = InvalidArgument(
           "the weighted cost overflows a double (the weights times the "

@@ -166,17 +166,19 @@ void FillSummary(const Result& r, v1::Summary* s) {
 }
 
 // Packed doubles cost 8 bytes, packed uint32 indices at most 5.
-MeshChunker::MeshChunker(const Result& result, size_t first_vertex,
-                         size_t max_bytes)
-    : result_(&result),
+MeshChunker::MeshChunker(const std::vector<Vec3>& vertices,
+                         const std::vector<Triangle>& triangles,
+                         size_t first_vertex, size_t max_bytes)
+    : vertices_(&vertices),
+      triangles_(&triangles),
       next_vertex_(first_vertex),
       vertices_per_chunk_(std::max<size_t>(1, max_bytes / 24)),
       triangles_per_chunk_(std::max<size_t>(1, max_bytes / 15)) {}
 
 bool MeshChunker::Next(v1::MeshChunk* chunk) {
   chunk->Clear();
-  const auto& vertices = result_->vertices;
-  const auto& triangles = result_->triangles;
+  const auto& vertices = *vertices_;
+  const auto& triangles = *triangles_;
   if (next_vertex_ < vertices.size()) {
     const size_t v = next_vertex_;
     const size_t end = std::min(vertices.size(), v + vertices_per_chunk_);
@@ -239,10 +241,10 @@ Status MeshAssembler::Add(const v1::MeshChunk& chunk) {
   return OkStatus();
 }
 
-Status MeshAssembler::Finish(const v1::Summary& summary,
+Status MeshAssembler::Finish(size_t vertex_count, size_t triangle_count,
                              const std::vector<Vec3>& input, MeshData* mesh) {
   mesh->vertices.clear();
-  if (!started_) first_vertex_ = summary.vertex_count();
+  if (!started_) first_vertex_ = vertex_count;
   if (first_vertex_ > input.size()) {
     return InvalidArgument("mesh starts at vertex " +
                            std::to_string(first_vertex_) + " but only " +
@@ -253,14 +255,14 @@ Status MeshAssembler::Finish(const v1::Summary& summary,
   mesh->vertices.insert(mesh->vertices.end(), vertices_.begin(),
                         vertices_.end());
   mesh->triangles = std::move(triangles_);
-  if (mesh->vertices.size() != summary.vertex_count() ||
-      mesh->triangles.size() != summary.triangle_count()) {
+  if (mesh->vertices.size() != vertex_count ||
+      mesh->triangles.size() != triangle_count) {
     return InvalidArgument(
         "incomplete mesh: " + std::to_string(mesh->vertices.size()) +
         " vertices and " + std::to_string(mesh->triangles.size()) +
-        " triangles received, summary says " +
-        std::to_string(summary.vertex_count()) + " and " +
-        std::to_string(summary.triangle_count()));
+        " triangles received, the server announced " +
+        std::to_string(vertex_count) + " and " +
+        std::to_string(triangle_count));
   }
   for (const Triangle& t : mesh->triangles) {
     for (int32_t v : t) {

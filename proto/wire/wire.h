@@ -38,12 +38,19 @@ void FillSummary(const Result& result, v1::Summary* summary);
 // large mesh is never held twice. `result` must outlive the chunker.
 class MeshChunker {
  public:
-  MeshChunker(const Result& result, size_t first_vertex, size_t max_bytes);
+  MeshChunker(const Result& result, size_t first_vertex, size_t max_bytes)
+      : MeshChunker(result.vertices, result.triangles, first_vertex,
+                    max_bytes) {}
+  // Any mesh; both vectors must outlive the chunker.
+  MeshChunker(const std::vector<Vec3>& vertices,
+              const std::vector<Triangle>& triangles, size_t first_vertex,
+              size_t max_bytes);
   // Fills the next chunk; false once every chunk has been given.
   bool Next(v1::MeshChunk* chunk);
 
  private:
-  const Result* result_;  // a pointer: chunkers are movable
+  const std::vector<Vec3>* vertices_;  // pointers: chunkers are movable
+  const std::vector<Triangle>* triangles_;
   size_t next_vertex_, next_triangle_ = 0;
   size_t vertices_per_chunk_, triangles_per_chunk_;
 };
@@ -55,7 +62,12 @@ class MeshAssembler {
   // Checks completeness against the summary; vertices the server omitted
   // (omit_input_vertices) are taken from `input`.
   Status Finish(const v1::Summary& summary, const std::vector<Vec3>& input,
-                MeshData* mesh);
+                MeshData* mesh) {
+    return Finish(summary.vertex_count(), summary.triangle_count(), input,
+                  mesh);
+  }
+  Status Finish(size_t vertex_count, size_t triangle_count,
+                const std::vector<Vec3>& input, MeshData* mesh);
 
  private:
   std::vector<Vec3> vertices_;

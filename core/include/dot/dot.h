@@ -5,9 +5,11 @@
 #define DOT_DOT_H_
 
 #include "dot/curves.h"          // IWYU pragma: export
+#include "dot/fill_holes.h"      // IWYU pragma: export
 #include "dot/geometry.h"        // IWYU pragma: export
 #include "dot/hole_generator.h"  // IWYU pragma: export
 #include "dot/io.h"              // IWYU pragma: export
+#include "dot/mesh_repair.h"     // IWYU pragma: export
 #include "dot/metrics.h"         // IWYU pragma: export
 #include "dot/space_cache.h"     // IWYU pragma: export
 #include "dot/status.h"          // IWYU pragma: export

@@ -17,6 +17,7 @@ namespace dot {
 struct Hole {
   PolygonData boundary;  // loop of mesh vertices, with mesh vertex normals
   int triangles = 0;     // triangles removed
+  std::vector<int32_t> removed;  // their indices in the mesh, ascending
 };
 
 // Grows a hole of `triangles` triangles from a triangle chosen by `seed`.

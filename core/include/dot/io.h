@@ -8,7 +8,11 @@
 //    (1-based, negative indices count from the end; a repeated first index
 //    closing the loop is dropped). Without an "l" line, the "v" order is the
 //    loop. "vn" lines, one per vertex, are boundary normals.
-// Mesh files (by extension): .obj, .ply (ASCII), .off.
+// Mesh files (by extension): written as .obj, .off or .ply (binary little
+// endian float64 by default, ASCII on request), every coordinate exactly
+// (17 significant digits in text); read with CGAL's polygon-soup readers
+// from .off, .obj, .ply (ASCII or binary, either byte order) and .stl
+// (ASCII or binary), polygons triangulated.
 #ifndef DOT_IO_H_
 #define DOT_IO_H_
 
@@ -38,11 +42,25 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out);
 Status WritePolygonText(const std::string& path, const PolygonData& polygon);
 
 // Format from the extension: .obj, .ply or .off.
-Status WriteMeshFile(const std::string& path, const MeshData& mesh);
+Status WriteMeshFile(const std::string& path, const MeshData& mesh,
+                     bool ascii = false);
 Status WriteMesh(std::ostream& out, const std::string& format,
-                 const MeshData& mesh);
-// Reads a triangle mesh from .off or .obj (polygons are fan-triangulated).
+                 const MeshData& mesh, bool ascii = false);
+
+// A mesh as read: faces of any size, nothing merged or dropped.
+struct PolygonSoup {
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<int32_t>> faces;
+};
+// Format from the extension (.off, .obj, .ply, .stl); kInvalidArgument names
+// the file and what is wrong with it.
+Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out);
+// A triangle mesh: ReadPolygonSoupFile, then polygons with more than three
+// corners triangulated (DOT with the area metric over their planar CDT; a
+// fan where that fails). No repair: see dot/mesh_repair.h.
 Status ReadMeshFile(const std::string& path, MeshData* out);
+// Triangulates the faces of a soup as ReadMeshFile does.
+Status TriangulateSoup(const PolygonSoup& soup, MeshData* out);
 
 }  // namespace dot
 

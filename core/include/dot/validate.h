@@ -34,8 +34,11 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
 
 // Number of triangle pairs that intersect other than along a shared edge or
 // at a shared vertex (exact predicates, box-intersection candidate pairs).
+// Only pairs with at least one triangle among the first `checked` count
+// (for example a new patch against its surroundings).
 int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
-                               const std::vector<Triangle>& triangles);
+                               const std::vector<Triangle>& triangles,
+                               size_t checked = SIZE_MAX);
 
 }  // namespace dot
 

@@ -3,11 +3,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 namespace dot {
 namespace {
+
+constexpr bool kLittleEndianHost = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 
 std::string Extension(const std::string& path) {
   const auto dot = path.find_last_of('.');
@@ -136,9 +140,43 @@ Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
   return out ? OkStatus() : InvalidArgument("failed writing '" + path + "'");
 }
 
+namespace {
+
+template <typename T>
+void PutLittleEndian(std::ostream& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if (!kLittleEndianHost) std::reverse(bytes, bytes + sizeof(T));
+  out.write(bytes, sizeof(T));
+}
+
+// Binary little-endian PLY: doubles as they are, so nothing is rounded.
+void WriteBinaryPly(std::ostream& out, const MeshData& mesh) {
+  out << "ply\nformat binary_little_endian 1.0\nelement vertex "
+      << mesh.vertices.size()
+      << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "element face " << mesh.triangles.size()
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const Vec3& p : mesh.vertices) {
+    PutLittleEndian(out, p.x);
+    PutLittleEndian(out, p.y);
+    PutLittleEndian(out, p.z);
+  }
+  for (const Triangle& t : mesh.triangles) {
+    PutLittleEndian<uint8_t>(out, 3);
+    for (int32_t v : t) PutLittleEndian(out, v);
+  }
+}
+
+}  // namespace
+
 Status WriteMesh(std::ostream& out, const std::string& format,
-                 const MeshData& mesh) {
+                 const MeshData& mesh, bool ascii) {
   out.precision(17);
+  if (format == "ply" && !ascii) {
+    WriteBinaryPly(out, mesh);
+    return out ? OkStatus() : InvalidArgument("failed writing the mesh");
+  }
   if (format == "obj") {
     for (const Vec3& p : mesh.vertices)
       out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
@@ -167,82 +205,19 @@ Status WriteMesh(std::ostream& out, const std::string& format,
   return out ? OkStatus() : InvalidArgument("failed writing the mesh");
 }
 
-Status WriteMeshFile(const std::string& path, const MeshData& mesh) {
+Status WriteMeshFile(const std::string& path, const MeshData& mesh,
+                     bool ascii) {
   const std::string ext = Extension(path);
   if (ext != "obj" && ext != "ply" && ext != "off") {
     return InvalidArgument("cannot tell the mesh format of '" + path +
                            "'; name it .obj, .ply or .off");
   }
-  std::ofstream out(path);
-  if (!out) return InvalidArgument("cannot write '" + path + "'");
-  return WriteMesh(out, ext, mesh);
-}
-
-Status ReadMeshFile(const std::string& path, MeshData* out) {
-  *out = {};
-  std::ifstream in(path);
-  if (!in) return InvalidArgument("cannot open mesh file '" + path + "'");
-  auto add_polygon = [out](const std::vector<int32_t>& f) {
-    for (size_t k = 1; k + 1 < f.size(); ++k)
-      out->triangles.push_back({f[0], f[k], f[k + 1]});
-  };
-  const std::string ext = Extension(path);
-  if (ext == "off") {
-    std::string header;
-    size_t nv = 0, nf = 0, ne = 0;
-    in >> header;
-    if (header != "OFF" || !(in >> nv >> nf >> ne)) {
-      return InvalidArgument(path + ": not an OFF file");
-    }
-    out->vertices.resize(nv);
-    for (Vec3& p : out->vertices) {
-      if (!(in >> p.x >> p.y >> p.z))
-        return InvalidArgument(path + ": truncated");
-      std::string rest;
-      std::getline(in, rest);  // skip colors
-    }
-    for (size_t i = 0; i < nf; ++i) {
-      size_t k;
-      if (!(in >> k) || k < 3) return InvalidArgument(path + ": bad face");
-      std::vector<int32_t> f(k);
-      for (int32_t& v : f) {
-        if (!(in >> v) || v < 0 || static_cast<size_t>(v) >= nv) {
-          return InvalidArgument(path + ": bad face index");
-        }
-      }
-      std::string rest;
-      std::getline(in, rest);
-      add_polygon(f);
-    }
-    return OkStatus();
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    return InvalidArgument("cannot write '" + path +
+                           "': " + std::strerror(errno));
   }
-  if (ext == "obj") {
-    std::string line;
-    while (std::getline(in, line)) {
-      std::istringstream s(line);
-      std::string tag;
-      s >> tag;
-      if (tag == "v") {
-        Vec3 p;
-        s >> p.x >> p.y >> p.z;
-        out->vertices.push_back(p);
-      } else if (tag == "f") {
-        std::vector<int32_t> f;
-        std::string tok;
-        while (s >> tok) {
-          int32_t idx;
-          if (!ObjIndex(std::strtol(tok.c_str(), nullptr, 10),
-                        out->vertices.size(), &idx)) {
-            return InvalidArgument(path + ": bad face index '" + tok + "'");
-          }
-          f.push_back(idx);
-        }
-        if (f.size() >= 3) add_polygon(f);
-      }
-    }
-    return OkStatus();
-  }
-  return InvalidArgument("cannot read mesh '" + path + "': use .off or .obj");
+  return WriteMesh(out, ext, mesh, ascii);
 }
 
 }  // namespace dot

@@ -207,7 +207,8 @@ void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
 }  // namespace
 
 int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
-                               const std::vector<Triangle>& triangles) {
+                               const std::vector<Triangle>& triangles,
+                               size_t checked) {
   std::vector<P3> p;
   p.reserve(vertices.size());
   for (const Vec3& v : vertices) p.push_back(ToPoint(v));
@@ -221,6 +222,10 @@ int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
   int64_t count = 0;
   CGAL::box_self_intersection_d(
       boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        if (static_cast<size_t>(x.info()) >= checked &&
+            static_cast<size_t>(y.info()) >= checked) {
+          return;
+        }
         if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
       });
   return count;

@@ -12,7 +12,7 @@
 namespace dot {
 namespace {
 
-struct MeshTopology {
+struct SideAdjacency {
   std::vector<int32_t> across;  // 3 per triangle: neighbour over side k, -1
   std::vector<int32_t> vertex_degree;  // triangles per vertex
   // Vertex on a mesh boundary or non-manifold edge: holes keep off it, so
@@ -20,8 +20,8 @@ struct MeshTopology {
   std::vector<bool> on_border;
 };
 
-MeshTopology BuildTopology(const MeshData& mesh) {
-  MeshTopology topo;
+SideAdjacency BuildTopology(const MeshData& mesh) {
+  SideAdjacency topo;
   topo.across.assign(3 * mesh.triangles.size(), -1);
   topo.vertex_degree.assign(mesh.vertices.size(), 0);
   topo.on_border.assign(mesh.vertices.size(), false);
@@ -43,13 +43,13 @@ MeshTopology BuildTopology(const MeshData& mesh) {
 // The hole while it grows.
 struct Growth {
   const MeshData& mesh;
-  const MeshTopology& topo;
+  const SideAdjacency& topo;
   std::vector<bool> in_hole;
   std::vector<int32_t> hole_degree;  // hole triangles per vertex
   std::vector<int32_t> frontier;     // candidates: neighbours of the hole
   int grown = 0;
 
-  Growth(const MeshData& m, const MeshTopology& t)
+  Growth(const MeshData& m, const SideAdjacency& t)
       : mesh(m),
         topo(t),
         in_hole(m.triangles.size(), false),
@@ -189,7 +189,7 @@ Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
     return InvalidArgument("hole size must be between 1 and the mesh's " +
                            std::to_string(nt) + " triangles");
   }
-  const MeshTopology topo = BuildTopology(mesh);
+  const SideAdjacency topo = BuildTopology(mesh);
   Growth growth(mesh, topo);
   std::mt19937_64 rng(seed);
   const int32_t start = PickStart(growth, &rng);
@@ -210,6 +210,9 @@ Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
   if (!s.ok()) return s;
   *out = {};
   out->triangles = growth.grown;
+  for (int32_t t = 0; t < nt; ++t) {
+    if (growth.in_hole[t]) out->removed.push_back(t);
+  }
   return WalkBoundary(growth, next, first, edges, &out->boundary);
 }
 

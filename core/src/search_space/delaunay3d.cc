@@ -2,6 +2,8 @@
 #include "search_space/delaunay3d.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "mesh/edge_index.h"
 #include "search_space/delaunay_cgal.h"
@@ -22,12 +24,33 @@ std::vector<int32_t> MissingPolygonEdges(int32_t n,
   return missing;
 }
 
+// TetGen decides with Shewchuk's predicates, which are exact only while no
+// product of up to five coordinate differences underflows: on the work
+// coordinates (largest in [0.5, 1)), every non-zero one must be at least
+// 2^-150 (products then stay above 2^-1022). Below that it can return a
+// wrong tetrahedralization, hence a self-intersecting "Delaunay" patch.
+Status CheckTetgenRange(const std::vector<Vec3>& points) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (double c : {points[i].x, points[i].y, points[i].z}) {
+      if (c != 0 && std::abs(c) < 0x1p-150) {
+        return InvalidArgument(
+            "vertex " + std::to_string(i) +
+            " has a coordinate more than 2^150 times smaller than the "
+            "polygon's largest (but not zero), on which TetGen's predicates "
+            "are not exact; use the cgal backend, or round it to zero");
+      }
+    }
+  }
+  return OkStatus();
+}
+
 Status Faces(const Options& options, const Control& control,
              const std::vector<Vec3>& points, std::vector<Triangle>* faces,
              int64_t* tetrahedra) {
   if (options.delaunay == DelaunayBackend::kCgal) {
     return CgalDelaunayFaces(points, options, control, faces, tetrahedra);
   }
+  if (Status s = CheckTetgenRange(points); !s.ok()) return s;
   Tetrahedralization tets;
   Status s = control.tetrahedralize ? control.tetrahedralize(points, &tets)
                                     : TetgenTetrahedralize(points, &tets);

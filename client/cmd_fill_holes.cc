@@ -1,0 +1,261 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl fill-holes MESH -o OUT: every hole of a mesh filled (DOT, then
+// refinement and fairing), over the server or with --local; a table per
+// hole, or the JSON report.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+#include "commands.h"
+#include "exit_codes.h"
+#include "fill_call.h"
+#include "wire/wire.h"
+
+namespace dot::client {
+namespace {
+
+struct FillFlags {
+  std::string input, output, stdin_format;
+  std::string stage = "fair";
+  uint32_t max_hole_edges = 0;
+  double max_hole_diameter = 0;
+  bool skip_longest = false;
+  std::vector<int32_t> holes;
+  MetricWeights weights;
+  bool absolute_weights = false;
+  double density = 0;
+  int fairing_continuity = 1;
+  bool no_repair = false, ascii = false;
+  bool json = false, local = false, quiet = false;
+  uint32_t time_budget_ms = 0;
+
+  v1::FillOptions ToWire() const {
+    v1::FillOptions o;
+    if (HasNonZeroWeight(weights)) {
+      *o.mutable_weights() = wire::ToWire(weights);
+    }
+    o.set_absolute_weights(absolute_weights);
+    o.set_stage(stage == "triangulate" ? v1::FILL_STAGE_TRIANGULATE
+                : stage == "refine"    ? v1::FILL_STAGE_REFINE
+                                       : v1::FILL_STAGE_FAIR);
+    o.set_max_hole_edges(max_hole_edges);
+    o.set_max_hole_diameter(max_hole_diameter);
+    o.set_skip_longest(skip_longest);
+    for (int32_t h : holes) o.add_holes(h);
+    o.set_density(density);
+    o.set_fairing_continuity(fairing_continuity);
+    o.set_no_repair(no_repair);
+    o.set_time_budget_ms(time_budget_ms);
+    return o;
+  }
+};
+
+void AddFlags(CLI::App* cmd, FillFlags* f) {
+  cmd->add_option("mesh", f->input,
+                  "mesh file (.off, .obj, .ply, .stl), or - for stdin "
+                  "(with --input-format)")
+      ->required();
+  cmd->add_option("-o,--output", f->output,
+                  "filled mesh (.off, .obj, .ply; - for stdout as "
+                  "--output-format); default: NAME.filled.ply beside the "
+                  "input");
+  cmd->add_option("--input-format", f->stdin_format,
+                  "format of a mesh read from stdin")
+      ->check(CLI::IsMember({"off", "obj", "ply", "stl"}));
+  cmd->add_option("--stage", f->stage,
+                  "triangulate (the DOT patch), refine (+ Liepa refinement) "
+                  "or fair (+ fairing: the finished surface)")
+      ->check(CLI::IsMember({"triangulate", "refine", "fair"}))
+      ->capture_default_str();
+  cmd->add_option("--max-hole-edges", f->max_hole_edges,
+                  "fill only holes with at most this many edges (0: any)")
+      ->group("Which holes");
+  cmd->add_option("--max-hole-diameter", f->max_hole_diameter,
+                  "fill only holes at most this wide (bounding-box diagonal; "
+                  "0: any)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Which holes");
+  cmd->add_flag("--skip-longest", f->skip_longest,
+                "leave the longest border open (a terrain's rim)")
+      ->group("Which holes");
+  cmd->add_option("--holes", f->holes, "only these hole ids, e.g. 3,7")
+      ->delimiter(',')
+      ->group("Which holes");
+  auto weight = [&](Metric m, const std::string& help) {
+    std::string flag(MetricName(m));
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    cmd->add_option("--" + flag, f->weights[m], help)
+        ->group("Metric weights (default: --squared-dihedral 1 --area 0.01)");
+  };
+  weight(Metric::kArea, "area, per squared mean boundary edge length");
+  weight(Metric::kPerimeter, "perimeter, per mean boundary edge length");
+  weight(Metric::kNormalDeviation, "deviation from the surface normals");
+  weight(Metric::kShape, "triangle shape (0 equilateral, 1 flat)");
+  weight(Metric::kDihedral, "bending angle, the surrounding faces included");
+  weight(Metric::kSquaredDihedral, "squared bending angle (fair patches)");
+  cmd->add_flag("--absolute-weights", f->absolute_weights,
+                "area and perimeter weights in the mesh's units, not per "
+                "hole scale")
+      ->group("Metric weights (default: --squared-dihedral 1 --area 0.01)");
+  cmd->add_option("--density", f->density,
+                  "refinement density factor (default sqrt(2))")
+      ->group("Refine and fair");
+  cmd->add_option("--fairing-continuity", f->fairing_continuity,
+                  "0 membrane, 1 thin plate, 2 minimum variation")
+      ->check(CLI::Range(0, 2))
+      ->capture_default_str()
+      ->group("Refine and fair");
+  cmd->add_flag("--no-repair", f->no_repair,
+                "use the mesh as it is (no vertex merging, orientation, ...)");
+  cmd->add_flag("--ascii", f->ascii, "write PLY as ASCII (default binary)");
+  cmd->add_option("--time-budget-ms", f->time_budget_ms,
+                  "compute time allowed (0: the server's limit)");
+  cmd->add_flag("--json", f->json, "the report as one JSON object on stdout");
+  cmd->add_flag("--local", f->local, "fill in this process, no server");
+  cmd->add_flag("-q,--quiet", f->quiet, "no per-hole table");
+}
+
+std::string Format(const std::string& path, const std::string& fallback) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (ext.size() > 1) return ext.substr(1);
+  return fallback;
+}
+
+// Reads the mesh; stdin goes through a temporary file, since CGAL's readers
+// detect binary PLY/STL from a file.
+Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
+  if (f.input != "-") return ReadPolygonSoupFile(f.input, soup);
+  if (f.stdin_format.empty()) {
+    return InvalidArgument("reading a mesh from stdin needs --input-format");
+  }
+  char name[] = "/tmp/dotctl-stdin-XXXXXX";
+  const int fd = mkstemp(name);
+  if (fd < 0) return InvalidArgument("cannot make a temporary file");
+  close(fd);
+  const std::string path = std::string(name) + "." + f.stdin_format;
+  std::rename(name, path.c_str());
+  {
+    std::ofstream tmp(path, std::ios::binary);
+    tmp << std::cin.rdbuf();
+  }
+  Status s = ReadPolygonSoupFile(path, soup);
+  std::remove(path.c_str());
+  return s;
+}
+
+void PrintTable(const v1::FillReport& r) {
+  std::cout << " hole edges  status            escalation       inserted "
+               "refined faired     ms  note\n";
+  for (const v1::HoleReport& h : r.holes()) {
+    const double ms =
+        h.triangulate_ms() + h.refine_ms() + h.fair_ms() + h.check_ms();
+    std::cout << std::setw(5) << h.id() << std::setw(6) << h.boundary_vertices()
+              << "  " << std::left << std::setw(18) << h.status()
+              << std::setw(17) << h.escalation() << std::right << std::setw(8)
+              << h.boundary_inserted() << std::setw(8) << h.refined_vertices()
+              << std::setw(7) << (h.faired() ? "yes" : "no") << std::setw(7)
+              << std::fixed << std::setprecision(1) << ms << "  "
+              << (h.pinched() ? "pinched loop; " : "") << h.reason() << "\n";
+    std::cout.unsetf(std::ios::fixed);
+  }
+}
+
+}  // namespace
+
+void AddFillHolesCommand(CLI::App& app, Context* ctx) {
+  auto flags = std::make_shared<FillFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "fill-holes",
+      "Fill every hole of a mesh: DOT patches, refined and faired.\n"
+      "Example: dotctl fill-holes scan.ply -o closed.ply --max-hole-edges 500");
+  AddFlags(cmd, flags.get());
+  cmd->callback([flags, ctx] {
+    const FillFlags& f = *flags;
+    std::string out = f.output;
+    if (out.empty()) {
+      if (f.input == "-")
+        out = "-";
+      else {
+        std::filesystem::path p(f.input);
+        out = (p.parent_path() / (p.stem().string() + ".filled.ply")).string();
+      }
+    }
+    const std::string format = out == "-" ? "off" : Format(out, "");
+    if (format != "off" && format != "obj" && format != "ply") {
+      std::cerr << "dotctl: cannot tell the mesh format of '" << out
+                << "'; name it .off, .obj or .ply\n";
+      ctx->exit_code = kExitUsage;
+      return;
+    }
+    PolygonSoup soup;
+    const Status read = ReadInput(f, &soup);
+    if (!read.ok()) {
+      std::cerr << "dotctl: " << read.message << "\n";
+      ctx->exit_code = kExitUsage;
+      return;
+    }
+    FillOutcome o;
+    if (f.local) {
+      o = FillLocal(f.input, f.ToWire(), soup);
+    } else {
+      auto channel = ChannelOrReport(ctx);
+      if (!channel) return;
+      auto stub = v1::Triangulator::NewStub(channel);
+      const bool bar = isatty(STDERR_FILENO) && !f.quiet;
+      o = FillRemote(*stub, f.input, f.ToWire(), soup,
+                     ctx->connection.timeout_s,
+                     [bar](const v1::FillProgress& p) {
+                       if (!bar) return;
+                       std::cerr << "\r  holes " << p.holes_done() << "/"
+                                 << p.holes_total() << std::flush;
+                     });
+      if (bar) std::cerr << "\r              \r";
+    }
+    std::string written;
+    if (o.status.ok()) {
+      Status w;
+      if (out == "-") {
+        w = WriteMesh(std::cout, format, o.mesh, f.ascii);
+      } else {
+        w = WriteMeshFile(out, o.mesh, f.ascii);
+        if (w.ok()) written = out;
+      }
+      if (!w.ok()) {
+        std::cerr << "dotctl: " << w.message << "\n";
+        ctx->exit_code = kExitFailed;
+      }
+    }
+    // With the mesh on stdout, the report goes to stderr.
+    std::ostream& text = out == "-" ? std::cerr : std::cout;
+    if (f.json) {
+      text << FillOutcomeJson(f.input, o, written) << std::endl;
+    } else if (!o.status.ok()) {
+      std::cerr << "dotctl: " << f.input << ": "
+                << wire::GrpcCodeName(o.status.error_code()) << ": "
+                << o.status.error_message() << "\n";
+    } else {
+      if (!f.quiet && out != "-") PrintTable(o.report);
+      const v1::FillReport& r = o.report;
+      text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
+           << " holes filled"
+           << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
+                           : "")
+           << ", " << (r.closed() ? "closed" : "still open") << "; +"
+           << r.added_vertices() << " vertices, +" << r.added_faces()
+           << " faces, " << o.latency_ms << " ms"
+           << (written.empty() ? "" : " -> " + written) << std::endl;
+    }
+    if (!o.status.ok()) {
+      ctx->exit_code = std::max(ctx->exit_code, ExitCodeFor(o.status));
+    } else if (o.report.unfilled() > 0 && ctx->exit_code == kExitOk) {
+      ctx->exit_code = kExitNoTriangulation;
+    }
+  });
+}
+
+}  // namespace dot::client

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "fill_call.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <chrono>
+#include <sstream>
+
+#include "remote_call.h"
+#include "wire/fill_wire.h"
+#include "wire/wire.h"
+
+namespace dot::client {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Requests stay well under gRPC's default 4 MiB message limit.
+constexpr size_t kRequestBytes = 1 << 20;
+
+}  // namespace
+
+FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
+                      const PolygonSoup& soup) {
+  const auto t0 = Clock::now();
+  FillOutcome out;
+  FillOptions options;
+  Status s = wire::FillOptionsFromWire(wire_options, &options);
+  MeshData mesh;
+  RepairReport repair;
+  if (s.ok()) {
+    s = wire_options.no_repair() ? TriangulateSoup(soup, &mesh)
+                                 : RepairMesh(soup, &mesh, &repair);
+  }
+  if (!s.ok()) {
+    out.status = wire::ToGrpcStatus(s);
+    return out;
+  }
+  FillResult r = FillHoles(mesh, options);
+  out.status = wire::ToGrpcStatus(r.status);
+  if (r.status.ok()) {
+    wire::FillReportToWire(r.report, repair, mesh.vertices.size(),
+                           mesh.triangles.size(), &out.report);
+    out.mesh = std::move(r.mesh);
+  }
+  out.latency_ms = MsSince(t0);
+  return out;
+}
+
+FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
+                       const v1::FillOptions& options, const PolygonSoup& mesh,
+                       double timeout_s, const FillProgressFn& on_progress) {
+  const auto t0 = Clock::now();
+  FillOutcome out;
+  grpc::ClientContext context;
+  context.set_deadline(
+      std::chrono::system_clock::now() +
+      std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
+  auto stream = stub.FillHoles(&context);
+  for (const v1::FillHolesRequest& m :
+       wire::MakeFillRequests(id, options, mesh, kRequestBytes)) {
+    if (!stream->Write(m)) break;  // the server answered early: see Finish
+  }
+  stream->WritesDone();
+  wire::MeshAssembler assembler;
+  v1::FillHolesResponse response;
+  bool have_report = false;
+  Status assembled = OkStatus();
+  while (stream->Read(&response)) {
+    switch (response.payload_case()) {
+      case v1::FillHolesResponse::kProgress:
+        if (on_progress) on_progress(response.progress());
+        break;
+      case v1::FillHolesResponse::kMesh:
+        if (assembled.ok()) assembled = assembler.Add(response.mesh());
+        break;
+      case v1::FillHolesResponse::kReport:
+        out.report = response.report();
+        have_report = true;
+        break;
+      default:
+        break;
+    }
+  }
+  out.status = stream->Finish();
+  out.latency_ms = MsSince(t0);
+  if (!out.status.ok()) return out;
+  if (!have_report) {
+    out.status = grpc::Status(grpc::StatusCode::INTERNAL,
+                              "the server ended the stream without a report");
+    return out;
+  }
+  const size_t vertices =
+      out.report.input_vertices() + out.report.added_vertices();
+  const size_t faces = out.report.input_faces() + out.report.added_faces();
+  if (assembled.ok()) {
+    assembled = assembler.Finish(vertices, faces, {}, &out.mesh);
+  }
+  if (!assembled.ok()) {
+    out.status = grpc::Status(grpc::StatusCode::INTERNAL,
+                              "bad mesh from the server: " + assembled.message);
+  }
+  return out;
+}
+
+std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
+                            const std::string& output_path) {
+  std::string report = "null";
+  if (o.status.ok()) {
+    google::protobuf::util::JsonPrintOptions options;
+    options.always_print_primitive_fields = true;
+    options.preserve_proto_field_names = true;
+    report.clear();
+    (void)google::protobuf::util::MessageToJsonString(o.report, &report,
+                                                      options);
+  }
+  std::ostringstream s;
+  s << "{\"version\":1,\"input\":" << JsonQuote(input) << ",\"rpc_status\":"
+    << JsonQuote(std::string(wire::GrpcCodeName(o.status.error_code())))
+    << ",\"error\":" << JsonQuote(o.status.error_message())
+    << ",\"output\":" << JsonQuote(output_path)
+    << ",\"latency_ms\":" << o.latency_ms << ",\"report\":" << report << "}";
+  return s.str();
+}
+
+}  // namespace dot::client

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// One FillHoles call, over the server or in this process, with the same
+// outcome either way: the status, the report and the filled mesh.
+#ifndef DOT_CLIENT_FILL_CALL_H_
+#define DOT_CLIENT_FILL_CALL_H_
+
+#include <grpcpp/grpcpp.h>
+
+#include <functional>
+#include <string>
+
+#include "dot/dot.h"
+#include "dot/v1/triangulation.grpc.pb.h"
+
+namespace dot::client {
+
+struct FillOutcome {
+  grpc::Status status;    // of the RPC (or of the local run)
+  v1::FillReport report;  // valid when status is OK
+  MeshData mesh;          // the filled mesh, when status is OK
+  double latency_ms = 0;
+};
+
+using FillProgressFn = std::function<void(const v1::FillProgress&)>;
+
+// In this process: the server's steps (repair unless options.no_repair,
+// FillHoles) with the server's defaults.
+FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
+                      const PolygonSoup& mesh);
+
+FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
+                       const v1::FillOptions& options, const PolygonSoup& mesh,
+                       double timeout_s,
+                       const FillProgressFn& on_progress = nullptr);
+
+// The JSON object dotctl prints for a fill (--json): versioned, complete
+// for every outcome.
+std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
+                            const std::string& output_path);
+
+}  // namespace dot::client
+
+#endif  // DOT_CLIENT_FILL_CALL_H_

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Filling the holes of a triangle mesh (the paper's Figure 10): each hole is
+// triangulated by DOT with the surrounding faces in the metric, then refined
+// (Liepa) and faired (Laplacian energy), and checked for intersections.
+//
+// A staircase of entry points, each usable alone:
+//   FindHoleLoops     every border cycle, split into simple loops, oriented
+//                     so that a fill face agrees with its neighbours;
+//   SelectHoles       which loops to fill (FillOptions::selection);
+//   TriangulateHole   one loop -> a patch (DOT, escalating to edge
+//                     protection, then to all triangles for small holes);
+//   RefineAndFairPatch  Liepa refinement and fairing of one patch (CGAL);
+//   FillHoles         all of the above over a whole mesh, holes in parallel.
+//
+// The contract: input vertices keep their order and exact coordinates; new
+// vertices follow them. Input faces are kept, except the faces across a
+// boundary edge that edge protection split, which are replaced by their
+// pieces. A hole that cannot be filled without an intersection is left open
+// and reported, never filled with an intersecting patch.
+#ifndef DOT_FILL_HOLES_H_
+#define DOT_FILL_HOLES_H_
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dot/geometry.h"
+#include "dot/io.h"
+#include "dot/metrics.h"
+#include "dot/status.h"
+#include "dot/triangulate.h"
+
+namespace dot {
+
+// A simple closed loop of border vertices.
+struct HoleLoop {
+  int32_t id = 0;                 // position in FindHoleLoops' answer
+  std::vector<int32_t> vertices;  // mesh vertex ids, in fill order
+  // Per loop edge (vertices[i], vertices[i+1 mod n]): the mesh face across.
+  std::vector<int32_t> faces;
+  int32_t border = 0;    // the border cycle it belongs to
+  bool pinched = false;  // split from a border that passes a vertex twice
+  double diameter = 0;   // bounding-box diagonal of its vertices
+};
+
+// Every border cycle of an edge-manifold, consistently oriented mesh, each
+// split at repeated vertices into simple loops. Loops run against the
+// border half-edges of their faces, so a patch oriented by the loop agrees
+// with its neighbours. kInvalidArgument names a non-manifold edge.
+Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops);
+
+// Which loops FillHoles fills. Every field, its meaning and default:
+//  max_edges     only loops with at most this many edges; 0: any. Default 0.
+//  max_diameter  only loops whose bounding-box diagonal is at most this;
+//                0: any. Default 0.
+//  skip_longest  leave the border with the most edges open (the outer rim
+//                of a terrain or of an open surface). Default false.
+//  ids           only these loop ids (HoleLoop::id); empty: every loop.
+struct HoleSelection {
+  int max_edges = 0;
+  double max_diameter = 0;
+  bool skip_longest = false;
+  std::vector<int32_t> ids;
+};
+
+enum class FillStage { kTriangulate, kRefine, kFair };
+std::string_view FillStageName(FillStage s);  // "triangulate", ...
+bool ParseFillStage(std::string_view name, FillStage* stage);
+
+// How FillHoles works. Every field, its meaning and default:
+//  weights          metric weights of the DOT patch. Default: squared
+//                   dihedral 1 (with the faces around the hole: the patch
+//                   meets them smoothly) plus area 0.01. When
+//                   scale_free_weights, the area weight is per squared mean
+//                   boundary edge length and the perimeter weight per mean
+//                   boundary edge length of each hole, so one set of
+//                   weights suits holes of every size.
+//  scale_free_weights  Default true.
+//  triangulate      options of each hole's Triangulate (search space,
+//                   backend, memory budget, ...). Default: Options{}, with
+//                   space kDelaunay (the escalation below replaces kAuto).
+//  all_space_max_vertices  last resort for holes of at most this many
+//                   vertices: the optimum over all triangles, accepted only
+//                   when it intersects nothing. Default 40.
+//  stage            kTriangulate, kRefine (Liepa refinement) or kFair
+//                   (refinement and fairing). Default kFair.
+//  density          Liepa's density control factor: refinement stops when
+//                   patch triangles are as dense as the surrounding mesh
+//                   times this. Default sqrt(2).
+//  fairing_continuity  0, 1 or 2: minimizes the Laplacian energy of order
+//                   1, 2 or 3 (membrane, thin plate, minimum variation).
+//                   Default 1.
+//  selection        which holes (above).
+//  threads          holes solved at once; 0: all cores. Default 0.
+struct FillOptions {
+  MetricWeights weights = DefaultFillWeights();
+  bool scale_free_weights = true;
+  Options triangulate = DefaultTriangulateOptions();
+  int all_space_max_vertices = 40;
+  FillStage stage = FillStage::kFair;
+  double density = 1.4142135623730951;
+  int fairing_continuity = 1;
+  HoleSelection selection;
+  int threads = 0;
+
+  static MetricWeights DefaultFillWeights();
+  static Options DefaultTriangulateOptions();
+};
+
+enum class HoleStatus { kFilled, kSkipped, kNoTriangulation, kFailed };
+std::string_view HoleStatusName(HoleStatus s);  // "filled", ...
+
+// Which search step produced a hole's patch.
+enum class Escalation { kNone, kDelaunay, kProtectedEdges, kAllTriangles };
+std::string_view EscalationName(Escalation e);
+
+struct HoleReport {
+  int32_t id = 0;
+  int32_t boundary_vertices = 0;
+  bool pinched = false;
+  HoleStatus status = HoleStatus::kSkipped;
+  std::string reason;  // why skipped / not filled / failed; fairing notes
+  Escalation escalation = Escalation::kNone;
+  SpaceUsed space = SpaceUsed::kNone;
+  Solver solver = Solver::kNone;
+  int32_t boundary_inserted = 0;     // vertices edge protection added
+  std::vector<int32_t> split_faces;  // input faces replaced by their pieces
+  int32_t patch_triangles = 0;
+  int32_t refined_vertices = 0;    // interior vertices refinement added
+  bool faired = false;             // fairing ran and was kept
+  double cost = 0;                 // the DOT patch's weighted cost
+  int64_t intersecting_pairs = 0;  // of the kept patch (0 when filled)
+  double triangulate_ms = 0, refine_ms = 0, fair_ms = 0, check_ms = 0;
+};
+
+struct FillReport {
+  std::vector<HoleReport> holes;  // one per loop, by id
+  int32_t loops = 0, filled = 0, skipped = 0, unfilled = 0;
+  int32_t added_vertices = 0, added_faces = 0;
+  bool closed = false;  // no border edge left
+  double total_ms = 0;
+};
+
+struct FillResult {
+  Status status;  // kOk even when some holes stay open: see report
+  MeshData mesh;  // input vertices first, unchanged; then new ones
+  FillReport report;
+};
+
+// One filled hole before it is merged into the mesh: faces over mesh ids,
+// where ids >= first_new_id index `new_vertices`.
+struct HolePatch {
+  std::vector<Vec3> new_vertices;
+  std::vector<Triangle> faces;
+  // Replacement of each split input face (split_faces[k] -> pieces[k]).
+  std::vector<int32_t> split_faces;
+  std::vector<std::vector<Triangle>> pieces;
+};
+
+// The per-hole stages, for callers that drive them (and for tests). The
+// mesh must be the one FindHoleLoops ran on; `topology` is built once.
+struct MeshTopology;  // vertex -> faces, vertex -> neighbours
+std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh);
+
+// DOT over the loop, with the faces across its edges in the bi-triangle
+// metrics and the loop's existing mesh edges forbidden as chords. Fills
+// report's escalation, space, solver, cost, boundary_inserted, split_faces.
+// Patch ids: mesh ids, then first_new_id + k for patch->new_vertices[k].
+Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
+                       const HoleLoop& loop, const FillOptions& options,
+                       const Control& control, int32_t first_new_id,
+                       HolePatch* patch, HoleReport* report);
+
+// Liepa refinement and, for FillStage::kFair, fairing of the patch's new
+// interior vertices (CGAL PMP on the patch and three rings of faces around
+// it). Fairing that fails or creates an intersection is undone (report says
+// so).
+Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
+                          const FillOptions& options, const Control& control,
+                          int32_t first_new_id, HolePatch* patch,
+                          HoleReport* report);
+
+// Intersecting pairs of patch faces with each other and with the mesh faces
+// near the patch (exact predicates).
+int64_t PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
+                           int32_t first_new_id, const HolePatch& patch);
+
+FillResult FillHoles(const MeshData& mesh, const FillOptions& options = {},
+                     const Control& control = {});
+
+}  // namespace dot
+
+#endif  // DOT_FILL_HOLES_H_

@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// FillHoles: find loops -> select -> per hole (in parallel) triangulate ->
+// refine and fair -> check -> merge into the mesh in hole order.
+#include "dot/fill_holes.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <thread>
+
+#include "dot/validate.h"
+#include "fill/mesh_topology.h"
+#include "mesh/edge_index.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Status CheckMesh(const MeshData& mesh) {
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (!IsFinite(mesh.vertices[v])) {
+      return InvalidArgument("vertex " + std::to_string(v) +
+                             " has a non-finite coordinate");
+    }
+  }
+  const auto nv = static_cast<int64_t>(mesh.vertices.size());
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    for (int32_t v : t) {
+      if (v < 0 || v >= nv) {
+        return InvalidArgument("face " + std::to_string(f) +
+                               " has vertex index " + std::to_string(v) +
+                               ", outside 0.." + std::to_string(nv - 1));
+      }
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      return InvalidArgument("face " + std::to_string(f) +
+                             " repeats a vertex (" + std::to_string(t[0]) +
+                             ", " + std::to_string(t[1]) + ", " +
+                             std::to_string(t[2]) + ")");
+    }
+  }
+  return OkStatus();
+}
+
+// Why a loop is not filled, or "" when it is selected.
+std::vector<std::string> Select(const std::vector<HoleLoop>& loops,
+                                const HoleSelection& sel) {
+  std::vector<std::string> why(loops.size());
+  int32_t longest = -1;
+  if (sel.skip_longest) {
+    std::map<int32_t, size_t> edges;
+    for (const HoleLoop& l : loops) edges[l.border] += l.vertices.size();
+    size_t most = 0;
+    for (const auto& [border, count] : edges) {
+      if (count > most) most = count, longest = border;
+    }
+  }
+  for (size_t i = 0; i < loops.size(); ++i) {
+    const HoleLoop& l = loops[i];
+    const auto n = static_cast<int>(l.vertices.size());
+    if (!sel.ids.empty() &&
+        std::find(sel.ids.begin(), sel.ids.end(), l.id) == sel.ids.end()) {
+      why[i] = "not among the requested holes";
+    } else if (l.border == longest) {
+      why[i] = "the longest border (skip_longest)";
+    } else if (sel.max_edges > 0 && n > sel.max_edges) {
+      why[i] = std::to_string(n) + " edges, more than max_edges " +
+               std::to_string(sel.max_edges);
+    } else if (sel.max_diameter > 0 && l.diameter > sel.max_diameter) {
+      why[i] = "diameter " + std::to_string(l.diameter) +
+               " exceeds max_diameter " + std::to_string(sel.max_diameter);
+    }
+  }
+  return why;
+}
+
+struct HoleWork {
+  HolePatch patch;
+  HoleReport report;
+  Status status;  // cancel / deadline / resource: stops the whole fill
+};
+
+void FillOne(const MeshData& mesh, const MeshTopology& topo,
+             const HoleLoop& loop, const FillOptions& options,
+             const Control& control, HoleWork* w) {
+  const auto first_new = static_cast<int32_t>(mesh.vertices.size());
+  HoleReport& r = w->report;
+  auto t0 = Clock::now();
+  Status s = TriangulateHole(mesh, topo, loop, options, control, first_new,
+                             &w->patch, &r);
+  r.triangulate_ms = MsSince(t0);
+  if (s.code == StatusCode::kCancelled ||
+      s.code == StatusCode::kDeadlineExceeded) {
+    w->status = s;
+    return;
+  }
+  if (!s.ok()) {
+    r.status = s.code == StatusCode::kNoTriangulation
+                   ? HoleStatus::kNoTriangulation
+                   : HoleStatus::kFailed;
+    r.reason = s.message;
+    return;
+  }
+  const HolePatch dot_patch = w->patch;
+  s = RefineAndFairPatch(mesh, topo, options, control, first_new, &w->patch,
+                         &r);
+  if (!s.ok()) {
+    w->status = s;
+    return;
+  }
+  t0 = Clock::now();
+  r.intersecting_pairs = PatchIntersections(mesh, topo, first_new, w->patch);
+  if (r.intersecting_pairs > 0 && options.stage != FillStage::kTriangulate) {
+    // Refinement can fold a patch; the DOT patch may still be clean.
+    const int64_t plain = PatchIntersections(mesh, topo, first_new, dot_patch);
+    if (plain == 0) {
+      r.reason = "refined patch intersected the mesh (" +
+                 std::to_string(r.intersecting_pairs) +
+                 " pairs): kept the unrefined DOT patch";
+      w->patch = dot_patch;
+      r.intersecting_pairs = 0;
+      r.refined_vertices = 0;
+      r.faired = false;
+      r.patch_triangles = static_cast<int32_t>(dot_patch.faces.size());
+    }
+  }
+  r.check_ms = MsSince(t0);
+  if (r.intersecting_pairs > 0) {
+    r.status = HoleStatus::kFailed;
+    r.reason = "every patch found intersects the mesh (" +
+               std::to_string(r.intersecting_pairs) +
+               " pairs of faces): left open";
+    return;
+  }
+  r.status = HoleStatus::kFilled;
+}
+
+// Appends the hole's new vertices and faces; split faces are replaced in
+// place by their first piece (so unsplit faces keep their index), the other
+// pieces appended. False when another hole already split one of its faces.
+bool Merge(const MeshData& input, HoleWork* w, std::vector<bool>* split,
+           FillResult* out) {
+  for (int32_t f : w->patch.split_faces) {
+    if ((*split)[f]) return false;
+  }
+  const auto first_new = static_cast<int32_t>(input.vertices.size());
+  const auto offset =
+      static_cast<int32_t>(out->mesh.vertices.size()) - first_new;
+  auto id = [&](int32_t v) { return v < first_new ? v : v + offset; };
+  auto remap = [&](Triangle t) {
+    for (int32_t& v : t) v = id(v);
+    return t;
+  };
+  out->mesh.vertices.insert(out->mesh.vertices.end(),
+                            w->patch.new_vertices.begin(),
+                            w->patch.new_vertices.end());
+  for (size_t k = 0; k < w->patch.split_faces.size(); ++k) {
+    const int32_t f = w->patch.split_faces[k];
+    (*split)[f] = true;
+    const auto& pieces = w->patch.pieces[k];
+    out->mesh.triangles[f] = remap(pieces[0]);
+    for (size_t p = 1; p < pieces.size(); ++p) {
+      out->mesh.triangles.push_back(remap(pieces[p]));
+    }
+  }
+  for (const Triangle& t : w->patch.faces) {
+    out->mesh.triangles.push_back(remap(t));
+  }
+  return true;
+}
+
+bool Closed(const std::vector<Triangle>& triangles) {
+  bool closed = true;
+  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& e) {
+    if (e.size() != 2) closed = false;
+  });
+  return closed;
+}
+
+}  // namespace
+
+MetricWeights FillOptions::DefaultFillWeights() {
+  MetricWeights w;
+  w[Metric::kSquaredDihedral] = 1;
+  w[Metric::kArea] = 0.01;
+  return w;
+}
+
+Options FillOptions::DefaultTriangulateOptions() {
+  Options o;
+  o.space = SearchSpace::kDelaunay;
+  return o;
+}
+
+FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
+                     const Control& control) {
+  const auto t_start = Clock::now();
+  FillResult out;
+  out.status = CheckMesh(mesh);
+  if (!out.status.ok()) return out;
+  std::vector<HoleLoop> loops;
+  out.status = FindHoleLoops(mesh, &loops);
+  if (!out.status.ok()) return out;
+  const auto topo = BuildMeshTopology(mesh);
+  const std::vector<std::string> skip = Select(loops, options.selection);
+
+  std::vector<HoleWork> work(loops.size());
+  for (size_t i = 0; i < loops.size(); ++i) {
+    HoleReport& r = work[i].report;
+    r.id = loops[i].id;
+    r.boundary_vertices = static_cast<int32_t>(loops[i].vertices.size());
+    r.pinched = loops[i].pinched;
+    r.reason = skip[i];
+  }
+  // The per-hole calls report no progress of their own (they run at once).
+  Control hole_control = control;
+  hole_control.progress = nullptr;
+  const int threads =
+      options.threads > 0
+          ? options.threads
+          : static_cast<int>(std::thread::hardware_concurrency());
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
+      if (!skip[i].empty()) return;
+      FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
+    });
+  });
+  for (const HoleWork& w : work) {
+    if (!w.status.ok()) {
+      out.status = w.status;
+      return out;  // cancelled or out of time: the mesh is not returned
+    }
+  }
+
+  out.mesh = mesh;
+  std::vector<bool> split(mesh.triangles.size(), false);
+  for (HoleWork& w : work) {
+    HoleReport& r = w.report;
+    if (r.status == HoleStatus::kFilled && !Merge(mesh, &w, &split, &out)) {
+      r.status = HoleStatus::kFailed;
+      r.reason = "a face it splits was split by another hole; fill it alone";
+    }
+    switch (r.status) {
+      case HoleStatus::kFilled:
+        ++out.report.filled;
+        break;
+      case HoleStatus::kSkipped:
+        ++out.report.skipped;
+        break;
+      default:
+        ++out.report.unfilled;
+    }
+    out.report.holes.push_back(std::move(r));
+  }
+  out.report.loops = static_cast<int32_t>(loops.size());
+  out.report.added_vertices =
+      static_cast<int32_t>(out.mesh.vertices.size() - mesh.vertices.size());
+  out.report.added_faces =
+      static_cast<int32_t>(out.mesh.triangles.size() - mesh.triangles.size());
+  out.report.closed = Closed(out.mesh.triangles);
+  out.report.total_ms = MsSince(t_start);
+  return out;
+}
+
+std::string_view FillStageName(FillStage s) {
+  switch (s) {
+    case FillStage::kTriangulate:
+      return "triangulate";
+    case FillStage::kRefine:
+      return "refine";
+    case FillStage::kFair:
+      return "fair";
+  }
+  return "?";
+}
+
+bool ParseFillStage(std::string_view name, FillStage* stage) {
+  for (FillStage s :
+       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
+    if (FillStageName(s) == name) {
+      *stage = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string_view HoleStatusName(HoleStatus s) {
+  switch (s) {
+    case HoleStatus::kFilled:
+      return "filled";
+    case HoleStatus::kSkipped:
+      return "skipped";
+    case HoleStatus::kNoTriangulation:
+      return "no_triangulation";
+    case HoleStatus::kFailed:
+      return "failed";
+  }
+  return "?";
+}
+
+std::string_view EscalationName(Escalation e) {
+  switch (e) {
+    case Escalation::kNone:
+      return "none";
+    case Escalation::kDelaunay:
+      return "delaunay";
+    case Escalation::kProtectedEdges:
+      return "protected_edges";
+    case Escalation::kAllTriangles:
+      return "all_triangles";
+  }
+  return "?";
+}
+
+}  // namespace dot

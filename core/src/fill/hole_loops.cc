@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Border cycles of a mesh, split into simple loops.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dot/fill_holes.h"
+#include "mesh/edge_index.h"
+
+namespace dot {
+namespace {
+
+// A border edge as the loop walks it: against its face's half-edge.
+struct HoleEdge {
+  int32_t from, to, face;
+};
+
+// Edges of `mesh` used by one face only, walked against that face; or the
+// first edge that breaks edge-manifoldness or orientation.
+Status BorderEdges(const MeshData& mesh, std::vector<HoleEdge>* border) {
+  const EdgeIndex index = BuildEdgeIndex(mesh.triangles);
+  Status status = OkStatus();
+  ForEachEdge(index, [&](const EdgeUses& edge) {
+    if (!status.ok()) return;
+    const std::string name =
+        "edge " + std::to_string(edge.lo()) + "-" + std::to_string(edge.hi());
+    if (edge.size() > 2) {
+      status = InvalidArgument(name + " is shared by " +
+                               std::to_string(edge.size()) +
+                               " faces (the mesh is not edge-manifold)");
+    } else if (edge.size() == 2 && edge[0].forward == edge[1].forward) {
+      status = InvalidArgument(name + " runs the same way in faces " +
+                               std::to_string(edge[0].triangle) + " and " +
+                               std::to_string(edge[1].triangle) +
+                               " (the faces are not consistently oriented)");
+    } else if (edge.size() == 1) {
+      border->push_back({edge[0].to(), edge[0].from(), edge[0].triangle});
+    }
+  });
+  return status;
+}
+
+double Diameter(const MeshData& mesh, const std::vector<int32_t>& ids) {
+  constexpr double kBig = std::numeric_limits<double>::infinity();
+  Vec3 lo{kBig, kBig, kBig}, hi{-kBig, -kBig, -kBig};
+  for (int32_t id : ids) {
+    const Vec3& p = mesh.vertices[id];
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return Distance(lo, hi);
+}
+
+// Splits one closed walk at its repeated vertices into simple loops: a
+// vertex met again closes the loop since its previous visit.
+void SplitWalk(const MeshData& mesh, const std::vector<HoleEdge>& walk,
+               int32_t border, std::vector<int32_t>* position,
+               std::vector<HoleLoop>* loops) {
+  std::vector<HoleEdge> stack;
+  const bool pinched = [&] {
+    std::vector<int32_t> seen;
+    for (const HoleEdge& e : walk) seen.push_back(e.from);
+    std::sort(seen.begin(), seen.end());
+    return std::adjacent_find(seen.begin(), seen.end()) != seen.end();
+  }();
+  auto emit = [&](size_t first) {
+    HoleLoop loop;
+    loop.id = static_cast<int32_t>(loops->size());
+    loop.border = border;
+    loop.pinched = pinched;
+    for (size_t k = first; k < stack.size(); ++k) {
+      loop.vertices.push_back(stack[k].from);
+      loop.faces.push_back(stack[k].face);
+      (*position)[stack[k].from] = -1;
+    }
+    loop.diameter = Diameter(mesh, loop.vertices);
+    loops->push_back(std::move(loop));
+    stack.resize(first);
+  };
+  for (const HoleEdge& e : walk) {
+    const int32_t p = (*position)[e.from];
+    if (p >= 0) emit(static_cast<size_t>(p));
+    (*position)[e.from] = static_cast<int32_t>(stack.size());
+    stack.push_back(e);
+  }
+  emit(0);
+}
+
+}  // namespace
+
+Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
+  loops->clear();
+  std::vector<HoleEdge> border;
+  Status s = BorderEdges(mesh, &border);
+  if (!s.ok()) return s;
+  // Deterministic walks: edges by start vertex, then end.
+  std::sort(border.begin(), border.end(),
+            [](const HoleEdge& a, const HoleEdge& b) {
+              return a.from < b.from || (a.from == b.from && a.to < b.to);
+            });
+  auto out_of = [&](int32_t v) {
+    return std::lower_bound(
+        border.begin(), border.end(), v,
+        [](const HoleEdge& e, int32_t x) { return e.from < x; });
+  };
+  std::vector<bool> used(border.size(), false);
+  std::vector<int32_t> position(mesh.vertices.size(), -1);
+  int32_t borders = 0;
+  for (size_t first = 0; first < border.size(); ++first) {
+    if (used[first]) continue;
+    std::vector<HoleEdge> walk;
+    size_t cur = first;
+    for (;;) {
+      used[cur] = true;
+      walk.push_back(border[cur]);
+      const int32_t v = border[cur].to;
+      if (v == border[first].from) break;
+      auto next = out_of(v);
+      while (next != border.end() && next->from == v &&
+             used[next - border.begin()]) {
+        ++next;
+      }
+      if (next == border.end() || next->from != v) {
+        return InvalidArgument("border vertex " + std::to_string(v) +
+                               " has more border edges arriving than "
+                               "leaving (the mesh is not consistently "
+                               "oriented around it)");
+      }
+      cur = static_cast<size_t>(next - border.begin());
+    }
+    SplitWalk(mesh, walk, borders++, &position, loops);
+  }
+  return OkStatus();
+}
+
+}  // namespace dot

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "fill/mesh_topology.h"
+
+#include <algorithm>
+#include <memory>
+
+namespace dot {
+
+bool MeshTopology::Joined(int32_t a, int32_t b) const {
+  return std::find(ring.begin() + ring_begin[a],
+                   ring.begin() + ring_begin[a + 1],
+                   b) != ring.begin() + ring_begin[a + 1];
+}
+
+std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh) {
+  auto topo = std::make_shared<MeshTopology>();
+  const size_t nv = mesh.vertices.size();
+  topo->face_begin.assign(nv + 1, 0);
+  for (const Triangle& t : mesh.triangles) {
+    for (int32_t v : t) ++topo->face_begin[v + 1];
+  }
+  for (size_t v = 0; v < nv; ++v)
+    topo->face_begin[v + 1] += topo->face_begin[v];
+  topo->faces.resize(topo->face_begin[nv]);
+  std::vector<int32_t> fill(topo->face_begin.begin(),
+                            topo->face_begin.end() - 1);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (int32_t v : mesh.triangles[f]) {
+      topo->faces[fill[v]++] = static_cast<int32_t>(f);
+    }
+  }
+  // Neighbours: the other corners of each incident face, deduplicated.
+  topo->ring_begin.assign(nv + 1, 0);
+  std::vector<int32_t> around;
+  for (size_t v = 0; v < nv; ++v) {
+    around.clear();
+    for (int32_t k = topo->face_begin[v]; k < topo->face_begin[v + 1]; ++k) {
+      for (int32_t w : mesh.triangles[topo->faces[k]]) {
+        if (w != static_cast<int32_t>(v)) around.push_back(w);
+      }
+    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    topo->ring.insert(topo->ring.end(), around.begin(), around.end());
+    topo->ring_begin[v + 1] = static_cast<int32_t>(topo->ring.size());
+  }
+  return topo;
+}
+
+}  // namespace dot

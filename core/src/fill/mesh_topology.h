@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// What hole filling asks of a mesh, indexed once: the faces around each
+// vertex and the vertices joined to it by an edge (compressed rows).
+#ifndef DOT_CORE_FILL_MESH_TOPOLOGY_H_
+#define DOT_CORE_FILL_MESH_TOPOLOGY_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "dot/fill_holes.h"
+
+namespace dot {
+
+struct MeshTopology {
+  std::vector<int32_t> face_begin, faces;  // vertex v: faces[face_begin[v]..]
+  std::vector<int32_t> ring_begin, ring;   // vertex v: its neighbours
+
+  bool Joined(int32_t a, int32_t b) const;
+};
+
+}  // namespace dot
+
+#endif  // DOT_CORE_FILL_MESH_TOPOLOGY_H_

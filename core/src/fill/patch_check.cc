@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// A patch against itself and the mesh faces near it (those whose bounding
+// boxes meet the patch's), with the exact predicates of the validator.
+#include <algorithm>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "dot/fill_holes.h"
+#include "dot/validate.h"
+#include "fill/mesh_topology.h"
+
+namespace dot {
+namespace {
+
+struct Box3 {
+  Vec3 lo{std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity()};
+  Vec3 hi{-lo.x, -lo.y, -lo.z};
+
+  void Add(const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  bool Meets(const Box3& o) const {
+    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y &&
+           o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
+  }
+};
+
+}  // namespace
+
+int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
+                           int32_t first_new_id, const HolePatch& patch) {
+  auto point = [&](int32_t id) -> const Vec3& {
+    return id < first_new_id ? mesh.vertices[id]
+                             : patch.new_vertices[id - first_new_id];
+  };
+  Box3 box;
+  for (const Triangle& t : patch.faces) {
+    for (int32_t v : t) box.Add(point(v));
+  }
+  std::vector<Triangle> faces = patch.faces;
+  for (const auto& pieces : patch.pieces) {
+    faces.insert(faces.end(), pieces.begin(), pieces.end());
+  }
+  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
+                                          patch.split_faces.end());
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    Box3 b;
+    for (int32_t v : t) b.Add(mesh.vertices[v]);
+    if (b.Meets(box) && !split.count(static_cast<int32_t>(f))) {
+      faces.push_back(t);
+    }
+  }
+  // Compact numbering over just these faces.
+  std::unordered_map<int32_t, int32_t> local;
+  std::vector<Vec3> points;
+  for (Triangle& t : faces) {
+    for (int32_t& v : t) {
+      auto [it, added] = local.emplace(v, static_cast<int32_t>(points.size()));
+      if (added) points.push_back(point(v));
+      v = it->second;
+    }
+  }
+  return CountIntersectingPairs(points, faces, patch.faces.size());
+}
+
+}  // namespace dot

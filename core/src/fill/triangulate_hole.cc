@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// One hole -> one DOT patch: the loop as a Problem (boundary normals, the
+// faces across its edges, its existing chords forbidden), the escalation
+// Delaunay -> edge protection -> all triangles, and the split of the faces
+// across boundary edges that edge protection subdivided.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "dot/fill_holes.h"
+#include "fill/mesh_topology.h"
+
+namespace dot {
+namespace {
+
+Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
+                    const HoleLoop& loop, const FillOptions& options) {
+  Problem p;
+  const int32_t n = static_cast<int32_t>(loop.vertices.size());
+  std::unordered_map<int32_t, int32_t> position;
+  double perimeter = 0;
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t v = loop.vertices[i];
+    position[v] = i;
+    p.vertices.push_back(mesh.vertices[v]);
+    perimeter +=
+        Distance(mesh.vertices[v], mesh.vertices[loop.vertices[(i + 1) % n]]);
+    p.edge_face_normals.push_back(
+        UnitNormal(mesh.vertices, mesh.triangles[loop.faces[i]]));
+  }
+  // Area-weighted vertex normals: the sum of the incident faces' cross
+  // products.
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t v = loop.vertices[i];
+    Vec3 sum;
+    for (int32_t k = topo.face_begin[v]; k < topo.face_begin[v + 1]; ++k) {
+      const Triangle& t = mesh.triangles[topo.faces[k]];
+      const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]],
+                 &c = mesh.vertices[t[2]];
+      sum = sum + Cross(b - a, c - a);
+    }
+    if (Norm(sum) == 0) sum = p.edge_face_normals[i];
+    if (Norm(sum) == 0) sum = {0, 0, 1};
+    p.normals.push_back(Normalized(sum));
+  }
+  // Chords the mesh already has.
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t v = loop.vertices[i];
+    for (int32_t k = topo.ring_begin[v]; k < topo.ring_begin[v + 1]; ++k) {
+      auto it = position.find(topo.ring[k]);
+      if (it == position.end() || it->second <= i) continue;
+      const int32_t j = it->second;
+      if (j == i + 1 || (i == 0 && j == n - 1)) continue;
+      p.forbidden_edges.emplace_back(i, j);
+    }
+  }
+  p.weights = options.weights;
+  if (options.scale_free_weights && perimeter > 0) {
+    const double edge = perimeter / n;
+    p.weights[Metric::kArea] /= edge * edge;
+    p.weights[Metric::kPerimeter] /= edge;
+  }
+  return p;
+}
+
+// The pieces of input face `f` once the inserted vertices of its border
+// edges are on it. `inserted` maps a directed loop edge (a, b) to the ids
+// inserted on it, in loop order.
+Status SplitFace(
+    const MeshData& mesh, int32_t f,
+    const std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>>& inserted,
+    const std::vector<Vec3>& new_vertices, int32_t first_new_id,
+    std::vector<Triangle>* pieces) {
+  const Triangle& t = mesh.triangles[f];
+  // The face's boundary with the inserted ids; the loop runs against it.
+  std::vector<int32_t> ring;
+  int split_sides = 0, last_split = 0;
+  for (int s = 0; s < 3; ++s) {
+    const int32_t x = t[s], y = t[(s + 1) % 3];
+    ring.push_back(x);
+    auto it = inserted.find({y, x});
+    if (it == inserted.end()) continue;
+    ++split_sides;
+    last_split = s;
+    ring.insert(ring.end(), it->second.rbegin(), it->second.rend());
+  }
+  auto point = [&](int32_t id) {
+    return id < first_new_id ? mesh.vertices[id]
+                             : new_vertices[id - first_new_id];
+  };
+  pieces->clear();
+  if (split_sides == 1) {
+    // A fan from the corner opposite the split side.
+    const int32_t x = t[last_split], y = t[(last_split + 1) % 3],
+                  z = t[(last_split + 2) % 3];
+    std::vector<int32_t> side{x};
+    auto it = inserted.find({y, x});
+    side.insert(side.end(), it->second.rbegin(), it->second.rend());
+    side.push_back(y);
+    for (size_t k = 0; k + 1 < side.size(); ++k) {
+      pieces->push_back({side[k], side[k + 1], z});
+    }
+    return OkStatus();
+  }
+  // Several split sides: the face is a planar polygon; DOT triangulates it.
+  Problem p;
+  for (int32_t id : ring) p.vertices.push_back(point(id));
+  Options o;
+  o.space = SearchSpace::kAll;
+  const Result r = Triangulate(p, o);
+  if (!r.status.ok() || r.intersecting_pairs > 0 || !r.inserted.empty()) {
+    return MakeStatus(StatusCode::kNoTriangulation,
+                      "face " + std::to_string(f) +
+                          " cannot be split at the vertices inserted on its "
+                          "sides: " +
+                          r.status.message);
+  }
+  for (const Triangle& tr : r.triangles) {
+    pieces->push_back({ring[tr[0]], ring[tr[1]], ring[tr[2]]});
+  }
+  return OkStatus();
+}
+
+struct Attempt {
+  Escalation escalation;
+  SearchSpace space;
+  bool protect_edges;
+};
+
+}  // namespace
+
+Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
+                       const HoleLoop& loop, const FillOptions& options,
+                       const Control& control, int32_t first_new_id,
+                       HolePatch* patch, HoleReport* report) {
+  *patch = {};
+  const Problem problem = HoleProblem(mesh, topology, loop, options);
+  const int32_t n = static_cast<int32_t>(loop.vertices.size());
+  std::vector<Attempt> attempts = {
+      {Escalation::kDelaunay, SearchSpace::kDelaunay, false},
+      {Escalation::kProtectedEdges, SearchSpace::kDelaunay, true}};
+  if (n <= options.all_space_max_vertices) {
+    attempts.push_back({Escalation::kAllTriangles, SearchSpace::kAll, false});
+  }
+  Result r;
+  std::string why;
+  for (const Attempt& a : attempts) {
+    Options o = options.triangulate;
+    o.space = a.space;
+    o.protect_edges = a.protect_edges;
+    r = Triangulate(problem, o, control);
+    report->escalation = a.escalation;
+    if (r.status.ok()) break;
+    if (r.status.code != StatusCode::kNoTriangulation) return r.status;
+    why += std::string(why.empty() ? "" : "; ") +
+           std::string(EscalationName(a.escalation)) + ": " + r.status.message;
+  }
+  if (!r.status.ok()) return MakeStatus(StatusCode::kNoTriangulation, why);
+  report->space = r.space_used;
+  report->solver = r.solver;
+  report->cost = r.total_cost;
+  report->boundary_inserted = static_cast<int32_t>(r.inserted.size());
+
+  auto global = [&](int32_t id) {
+    return id < n ? loop.vertices[id] : first_new_id + (id - n);
+  };
+  for (int32_t id = n; id < static_cast<int32_t>(r.vertices.size()); ++id) {
+    patch->new_vertices.push_back(r.vertices[id]);
+  }
+  for (const Triangle& t : r.triangles) {
+    patch->faces.push_back({global(t[0]), global(t[1]), global(t[2])});
+  }
+  report->patch_triangles = static_cast<int32_t>(patch->faces.size());
+  if (r.inserted.empty()) return OkStatus();
+
+  // Inserted vertices, per split loop edge, in loop order.
+  std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>> inserted;
+  std::vector<int32_t> split;
+  const std::vector<int32_t>& ring = r.polygon;
+  for (size_t k = 0; k < ring.size(); ++k) {
+    if (ring[k] >= n) continue;
+    size_t j = (k + 1) % ring.size();
+    std::vector<int32_t> on_edge;
+    for (; ring[j] >= n; j = (j + 1) % ring.size()) {
+      on_edge.push_back(global(ring[j]));
+    }
+    if (on_edge.empty()) continue;
+    inserted[{loop.vertices[ring[k]], loop.vertices[ring[j]]}] = on_edge;
+    split.push_back(loop.faces[ring[k]]);
+  }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  for (int32_t f : split) {
+    std::vector<Triangle> pieces;
+    Status s = SplitFace(mesh, f, inserted, patch->new_vertices, first_new_id,
+                         &pieces);
+    if (!s.ok()) return s;
+    patch->split_faces.push_back(f);
+    patch->pieces.push_back(std::move(pieces));
+  }
+  report->split_faces = patch->split_faces;
+  return OkStatus();
+}
+
+}  // namespace dot
