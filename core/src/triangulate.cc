@@ -333,12 +333,15 @@ Result Triangulate(const Problem& problem, const Options& options,
                       scale);
     r.total_cost = WeightedTotal(weights, r.metric_costs);
     // Only the weighted metrics count: an unweighted one may overflow in
-    // the caller's units (the area, from coordinates near 1e154 on).
+    // the caller's units (the area, from coordinates near 1e154 on). A
+    // weighted one that does makes the total infinite, or NaN when two
+    // overflow with opposite signs.
     const bool metrics_finite =
         std::all_of(kAllMetrics.begin(), kAllMetrics.end(), [&](Metric m) {
           return weights[m] == 0 || std::isfinite(r.metric_costs[m]);
         });
-    if (metrics_finite && !std::isfinite(r.total_cost)) {
+    if ((metrics_finite && !std::isfinite(r.total_cost)) ||
+        std::isnan(r.total_cost)) {
       r.status = InvalidArgument(
           "the weighted cost overflows a double (the weights times the "
           "metric sums exceed 1.8e308); scale the weights down: only their "

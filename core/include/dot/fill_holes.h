@@ -39,8 +39,8 @@ struct HoleLoop {
   std::vector<int32_t> vertices;  // mesh vertex ids, in fill order
   // Per loop edge (vertices[i], vertices[i+1 mod n]): the mesh face across.
   std::vector<int32_t> faces;
-  int32_t border = 0;    // the border cycle it belongs to
-  bool pinched = false;  // split from a border that passes a vertex twice
+  int32_t border = 0;    // the border walk it was split from
+  bool pinched = false;  // shares a vertex with another loop
   double diameter = 0;   // bounding-box diagonal of its vertices
 };
 

@@ -26,6 +26,14 @@ struct Hole {
 // is applied by Triangulate (Options::protect_edges).
 Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out);
 
+// Test data for hole filling: `count` holes of `triangles` triangles each,
+// grown from seeds derived from `seed`, apart from each other (no shared
+// vertex). `holey` is the mesh without them (unused vertices dropped),
+// `removed` the removed patches (the ground truth), each compacted.
+// kInvalidArgument when the mesh has no room for that many holes.
+Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
+                MeshData* holey, MeshData* removed);
+
 }  // namespace dot
 
 #endif  // DOT_HOLE_GENERATOR_H_

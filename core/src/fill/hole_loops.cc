@@ -130,6 +130,14 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
     }
     SplitWalk(mesh, walk, borders++, &position, loops);
   }
+  // A vertex on several loops pinches them, however the walks went.
+  std::vector<int8_t> seen(mesh.vertices.size(), 0);
+  for (const HoleLoop& l : *loops) {
+    for (int32_t v : l.vertices) seen[v] = std::min(seen[v] + 1, 2);
+  }
+  for (HoleLoop& l : *loops) {
+    for (int32_t v : l.vertices) l.pinched |= seen[v] > 1;
+  }
   return OkStatus();
 }
 

@@ -216,4 +216,60 @@ Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
   return WalkBoundary(growth, next, first, edges, &out->boundary);
 }
 
+namespace {
+
+// `mesh` restricted to the faces `keep` marks, unused vertices dropped.
+MeshData Compacted(const MeshData& mesh, const std::vector<bool>& keep) {
+  MeshData out;
+  std::vector<int32_t> id(mesh.vertices.size(), -1);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (!keep[f]) continue;
+    Triangle t = mesh.triangles[f];
+    for (int32_t& v : t) {
+      if (id[v] < 0) {
+        id[v] = static_cast<int32_t>(out.vertices.size());
+        out.vertices.push_back(mesh.vertices[v]);
+      }
+      v = id[v];
+    }
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
+Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
+                MeshData* holey, MeshData* removed) {
+  std::vector<bool> in_hole(mesh.triangles.size(), false);
+  std::vector<bool> near_hole(mesh.vertices.size(), false);
+  int cut = 0;
+  for (uint64_t attempt = 0; cut < count && attempt < 50u * count; ++attempt) {
+    Hole hole;
+    if (!GrowHole(mesh, triangles, seed * 1000003 + attempt, &hole).ok()) {
+      continue;
+    }
+    bool apart = true;
+    for (int32_t f : hole.removed) {
+      for (int32_t v : mesh.triangles[f]) apart &= !near_hole[v];
+    }
+    if (!apart) continue;
+    for (int32_t f : hole.removed) {
+      in_hole[f] = true;
+      for (int32_t v : mesh.triangles[f]) near_hole[v] = true;
+    }
+    ++cut;
+  }
+  if (cut < count) {
+    return InvalidArgument("found room for only " + std::to_string(cut) +
+                           " separate holes of " + std::to_string(triangles) +
+                           " triangles");
+  }
+  std::vector<bool> kept(in_hole.size());
+  for (size_t f = 0; f < in_hole.size(); ++f) kept[f] = !in_hole[f];
+  *holey = Compacted(mesh, kept);
+  *removed = Compacted(mesh, in_hole);
+  return OkStatus();
+}
+
 }  // namespace dot

@@ -84,7 +84,7 @@ TEST(SpaceCacheTest, AnythingThatShapesTheSpaceMisses) {
   ASSERT_FALSE(Triangulate(p, {}, control).stats.cache_hit);
 
   Problem moved = p;
-  moved.vertices[17].z = std::nextafter(moved.vertices[17].z, 1.0);
+  moved.vertices[17].x = std::nextafter(moved.vertices[17].x, 1.0);
   EXPECT_FALSE(Triangulate(moved, {}, control).stats.cache_hit);
   Problem with_normals = p;
   with_normals.normals.assign(p.vertices.size(), {0, 0, 1});

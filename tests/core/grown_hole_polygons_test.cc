@@ -15,8 +15,8 @@ namespace {
 using testing::BumpyTorus;
 using testing::MeshPath;
 
-void FillHoles(const MeshData& mesh, const std::vector<int>& sizes, int* filled,
-               int* attempted) {
+void TriangulateGrownHoles(const MeshData& mesh, const std::vector<int>& sizes,
+                           int* filled, int* attempted) {
   uint64_t seed = 1;
   for (int size : sizes) {
     Hole hole;
@@ -45,9 +45,9 @@ void FillHoles(const MeshData& mesh, const std::vector<int>& sizes, int* filled,
 
 TEST(HolesTest, FillsHolesOnASyntheticTorus) {
   int filled = 0, attempted = 0;
-  FillHoles(BumpyTorus(80, 40),
-            {10, 30, 60, 100, 200, 300, 500, 800, 1000, 1500}, &filled,
-            &attempted);
+  TriangulateGrownHoles(BumpyTorus(80, 40),
+                        {10, 30, 60, 100, 200, 300, 500, 800, 1000, 1500},
+                        &filled, &attempted);
   EXPECT_EQ(attempted, 10);
   EXPECT_GE(filled, 9);
 }
@@ -60,8 +60,9 @@ TEST(HolesTest, FillsHolesOnRealMeshes) {
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
     MeshData mesh;
     ASSERT_TRUE(ReadMeshFile(path, &mesh).ok());
-    FillHoles(mesh, {20, 50, 100, 150, 200, 300, 400, 600, 800, 1000}, &filled,
-              &attempted);
+    TriangulateGrownHoles(mesh,
+                          {20, 50, 100, 150, 200, 300, 400, 600, 800, 1000},
+                          &filled, &attempted);
   }
   EXPECT_GE(attempted, 15);
   EXPECT_GE(filled, attempted * 8 / 10);

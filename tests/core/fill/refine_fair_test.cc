@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Refinement reaches the density of the surroundings; fairing keeps a plane
+// flat and follows a sphere.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dot/dot.h"
+#include "fixtures/filled_mesh.h"
+
+namespace dot {
+namespace {
+
+using testing::FlatGrid;
+using testing::WithoutFaces;
+
+MeshData GridWithSquareHole(int n, int lo, int hi) {
+  const MeshData grid = FlatGrid(n);
+  return WithoutFaces(grid, [&](int32_t f) {
+    const int quad = f / 2, i = quad / n, j = quad % n;
+    return i >= lo && i < hi && j >= lo && j < hi;
+  });
+}
+
+const HoleReport& Filled(const FillResult& r) {
+  for (const HoleReport& h : r.report.holes) {
+    if (h.status == HoleStatus::kFilled) return h;
+  }
+  return r.report.holes.at(0);
+}
+
+double MeanEdge(const MeshData& m, size_t first_face, size_t last_face) {
+  double sum = 0;
+  int count = 0;
+  for (size_t f = first_face; f < last_face; ++f) {
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      sum += Distance(m.vertices[t[k]], m.vertices[t[(k + 1) % 3]]);
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
+TEST(RefineFairTest, RefinementReachesTheSurroundingDensity) {
+  const MeshData m = GridWithSquareHole(30, 8, 22);
+  FillOptions o;
+  o.stage = FillStage::kRefine;
+  o.selection.skip_longest = true;  // the grid's rim
+  const FillResult r = FillHoles(m, o);
+  testing::ExpectFilledMesh(m, r, /*closed=*/false, "grid");
+  ASSERT_EQ(r.report.filled, 1);
+  EXPECT_GT(Filled(r).refined_vertices, 50);
+  const double around = MeanEdge(m, 0, m.triangles.size());
+  const double patch =
+      MeanEdge(r.mesh, m.triangles.size(), r.mesh.triangles.size());
+  std::printf("mean edge: surroundings %.4f, refined patch %.4f\n", around,
+              patch);
+  EXPECT_LT(patch, 2.0 * around);
+  EXPECT_GT(patch, 0.5 * around);
+  // Unrefined, the patch spans the hole with long edges.
+  o.stage = FillStage::kTriangulate;
+  const FillResult coarse = FillHoles(m, o);
+  EXPECT_GT(
+      MeanEdge(coarse.mesh, m.triangles.size(), coarse.mesh.triangles.size()),
+      2.0 * around);
+}
+
+TEST(RefineFairTest, FairingKeepsAPlaneFlat) {
+  const MeshData m = GridWithSquareHole(30, 8, 22);
+  for (int continuity : {0, 1, 2}) {
+    FillOptions o;
+    o.fairing_continuity = continuity;
+    o.selection.skip_longest = true;
+    const FillResult r = FillHoles(m, o);
+    testing::ExpectFilledMesh(m, r, /*closed=*/false, "grid");
+    ASSERT_EQ(r.report.filled, 1);
+    EXPECT_TRUE(Filled(r).faired) << Filled(r).reason;
+    for (size_t v = m.vertices.size(); v < r.mesh.vertices.size(); ++v) {
+      EXPECT_NEAR(r.mesh.vertices[v].z, 0, 1e-9) << continuity;
+    }
+  }
+}
+
+// A UV sphere of radius 1 with a cap cut out: the faired patch stays near
+// the sphere; the flat DOT patch does not.
+TEST(RefineFairTest, FairingFollowsASphere) {
+  MeshData sphere;
+  const int rings = 40, segments = 80;
+  sphere.vertices.push_back({0, 0, 1});
+  for (int i = 1; i < rings; ++i) {
+    const double theta = kPi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * kPi * j / segments;
+      sphere.vertices.push_back({std::sin(theta) * std::cos(phi),
+                                 std::sin(theta) * std::sin(phi),
+                                 std::cos(theta)});
+    }
+  }
+  sphere.vertices.push_back({0, 0, -1});
+  const int south = static_cast<int>(sphere.vertices.size()) - 1;
+  auto id = [&](int i, int j) { return 1 + (i - 1) * segments + j % segments; };
+  for (int j = 0; j < segments; ++j) {
+    sphere.triangles.push_back({0, id(1, j), id(1, j + 1)});
+    sphere.triangles.push_back({south, id(rings - 1, j + 1), id(rings - 1, j)});
+  }
+  for (int i = 1; i + 1 < rings; ++i) {
+    for (int j = 0; j < segments; ++j) {
+      sphere.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      sphere.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  // Cut a cap around (1, 0, 0).
+  const MeshData m = WithoutFaces(sphere, [&](int32_t f) {
+    const Triangle& t = sphere.triangles[f];
+    const Vec3 c = (1.0 / 3) * (sphere.vertices[t[0]] + sphere.vertices[t[1]] +
+                                sphere.vertices[t[2]]);
+    return c.x > 0.85;
+  });
+  auto worst = [&](const FillResult& r) {
+    double d = 0;
+    for (size_t v = m.vertices.size(); v < r.mesh.vertices.size(); ++v) {
+      d = std::max(d, std::fabs(Norm(r.mesh.vertices[v]) - 1));
+    }
+    // Centroids of the new faces measure flat patches too.
+    for (size_t f = m.triangles.size(); f < r.mesh.triangles.size(); ++f) {
+      const Triangle& t = r.mesh.triangles[f];
+      const Vec3 c =
+          (1.0 / 3) * (r.mesh.vertices[t[0]] + r.mesh.vertices[t[1]] +
+                       r.mesh.vertices[t[2]]);
+      d = std::max(d, std::fabs(Norm(c) - 1));
+    }
+    return d;
+  };
+  FillOptions o;
+  const FillResult faired = FillHoles(m, o);
+  testing::ExpectFilledMesh(m, faired, /*closed=*/true, "sphere");
+  ASSERT_TRUE(faired.report.holes[0].faired);
+  o.stage = FillStage::kTriangulate;
+  const FillResult flat = FillHoles(m, o);
+  std::printf("largest distance from the sphere: faired %.4f, DOT only %.4f\n",
+              worst(faired), worst(flat));
+  EXPECT_LT(worst(faired), 0.02);
+  EXPECT_GT(worst(flat), 0.05);
+}
+
+}  // namespace
+}  // namespace dot
