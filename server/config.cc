@@ -83,6 +83,11 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
       "Triangulate calls over the Delaunay space up to this many vertices "
       "run on the RPC thread when a compute slot is free, saving a thread "
       "handoff (0: never)");
+  Add(app, "--fill-max-faces", &s.fill_max_faces, "DOT_FILL_MAX_FACES",
+      "largest mesh FillHoles accepts, in faces (held in memory: about 100 "
+      "bytes each)");
+  Add(app, "--fill-max-vertices", &s.fill_max_vertices, "DOT_FILL_MAX_VERTICES",
+      "largest mesh FillHoles accepts, in vertices");
   Add(app, "--delaunay-helpers", &c->helpers.count, "DOT_DELAUNAY_HELPERS",
       "TetGen helper processes (-1: one per thread, 0: in-process, "
       "serialized)");

@@ -100,6 +100,64 @@ std::shared_ptr<Job> JobRunner::Admit(
   return job;
 }
 
+std::shared_ptr<Job> JobRunner::AdmitTask(
+    const char* rpc, const std::string& id, uint32_t budget_ms,
+    std::chrono::system_clock::time_point client_deadline,
+    grpc::Status* error) {
+  auto job = std::make_shared<Job>();
+  *error = grpc::Status::OK;
+  job->rpc = rpc;
+  job->arrived = Clock::now();
+  job->options = options_.solve;
+  job->log_detail = "input=incomplete";  // until the task says more
+  if (id.size() > kMaxRequestIdBytes) {
+    *error = grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "request id has " + std::to_string(id.size()) +
+                              " bytes; at most " +
+                              std::to_string(kMaxRequestIdBytes) + " allowed");
+    return job;
+  }
+  job->id = id;
+  SetDeadline(options_, budget_ms, client_deadline, job.get());
+  if (draining_ || !Track(job.get())) {
+    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          "server is shutting down; retry on another replica");
+  }
+  return job;
+}
+
+bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
+                          std::function<Status(Job&)> work) {
+  const bool queued = pool_->TrySubmit([this, job, work = std::move(work)] {
+    job->started = Clock::now();
+    metrics_->queue_depth().Set(pool_->queued());
+    metrics_->busy_threads().Set(pool_->busy());
+    if (job->cancel) {
+      job->result.status =
+          MakeStatus(StatusCode::kCancelled, "cancelled while queued");
+    } else if (job->started >= job->deadline) {
+      job->result.status = MakeStatus(StatusCode::kDeadlineExceeded,
+                                      "deadline passed in the queue");
+    } else {
+      try {
+        job->result.status = work(*job);
+      } catch (const std::exception& e) {  // bad_alloc above all
+        job->result.status =
+            MakeStatus(StatusCode::kResourceExhausted,
+                       std::string("computation failed: ") + e.what());
+      }
+    }
+    job->finished = Clock::now();
+    ReturnFreedMemory();
+    job->ran = true;
+    metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
+    std::function<void()> done = std::move(job->on_done);
+    done();
+  });
+  metrics_->queue_depth().Set(pool_->queued());
+  return queued;
+}
+
 bool JobRunner::Track(Job* job) {
   std::lock_guard<std::mutex> lock(jobs_mu_);
   if (draining_) return false;

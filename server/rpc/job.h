@@ -45,6 +45,9 @@ struct Job {
   // Written by the computing thread before on_done; read after it.
   bool ran = false;
   Result result;
+  // For calls that are not one polygon (FillHoles): what the log line
+  // says instead of the polygon's size, weights, space and triangles.
+  std::string log_detail;
 
   // Both run on the computing thread. on_done is the job's last act.
   std::function<void(const v1::Progress&)> on_progress;
@@ -65,6 +68,18 @@ class JobRunner {
   std::shared_ptr<Job> Admit(const v1::TriangulateRequest& request,
                              std::chrono::system_clock::time_point deadline,
                              const char* rpc, grpc::Status* error);
+
+  // Admission of a call that is not one polygon (FillHoles): drain, id and
+  // deadline checks; the job carries its cancel flag and deadline and is
+  // answered, counted and logged like the others.
+  std::shared_ptr<Job> AdmitTask(const char* rpc, const std::string& id,
+                                 uint32_t budget_ms,
+                                 std::chrono::system_clock::time_point deadline,
+                                 grpc::Status* error);
+  // Runs `work` on the compute pool (its status lands in job->result.status),
+  // then job->on_done. False when the queue is full.
+  bool StartTask(const std::shared_ptr<Job>& job,
+                 std::function<Status(Job&)> work);
 
   // Runs the job: inline on this thread when `may_run_here` and a compute
   // slot is free (on_done has then run when this returns), else queued.

@@ -8,7 +8,9 @@ double Ms(Clock::duration d) {
   return std::chrono::duration<double, std::milli>(d).count();
 }
 
-grpc::Status StatusOf(const Job& job, int max_compute_ms) {
+}  // namespace
+
+grpc::Status JobStatus(const Job& job, int max_compute_ms) {
   const Status& s = job.result.status;
   if (s.code == StatusCode::kCancelled) {
     if (job.drained) {
@@ -32,12 +34,10 @@ grpc::Status StatusOf(const Job& job, int max_compute_ms) {
   return grpc::Status::OK;
 }
 
-}  // namespace
-
 JobResponse::JobResponse(std::shared_ptr<const Job> job, size_t chunk_bytes,
                          int max_compute_ms)
     : job_(std::move(job)),
-      status_(StatusOf(*job_, max_compute_ms)),
+      status_(JobStatus(*job_, max_compute_ms)),
       chunks_(
           job_->result,
           job_->wire.omit_input_vertices() ? job_->problem.vertices.size() : 0,

@@ -16,6 +16,12 @@
 
 namespace dot::server {
 
+// The gRPC status of a finished job: a drain's cancel is UNAVAILABLE (so
+// clients retry elsewhere), the server's time limit is named, other core
+// failures map through wire::ToGrpcStatus; OK otherwise (also for "no
+// triangulation", which is an answer).
+grpc::Status JobStatus(const Job& job, int max_compute_ms);
+
 class JobResponse {
  public:
   // `job` must have run (on_done called). `max_compute_ms` is quoted when

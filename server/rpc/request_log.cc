@@ -51,6 +51,16 @@ void LogRequest(const Job& job, const grpc::Status& status,
   }
   metrics->RequestDone(job.rpc, label, Ms(Clock::now() - job.arrived) / 1000);
   const bool ran = job.ran;
+  if (!job.log_detail.empty()) {
+    spdlog::info(
+        "rpc={} id=\"{}\" {} status={} queue_ms={:.1f} compute_ms={:.1f}{}{}",
+        job.rpc, EscapeForLog(job.id), job.log_detail, label,
+        ran ? Ms(job.started - job.arrived) : 0.0,
+        ran ? Ms(job.finished - job.started) : 0.0,
+        status.ok() ? "" : " message=\"",
+        status.ok() ? "" : EscapeForLog(status.error_message(), 1024) + "\"");
+    return;
+  }
   spdlog::info(
       "rpc={} id=\"{}\" n={} weights={} space={} status={} queue_ms={:.1f} "
       "compute_ms={:.1f} triangles={}{}{}",

@@ -16,6 +16,10 @@ namespace dot::server {
 struct ServiceOptions {
   // Largest polygon accepted.
   int max_vertices = 1000000;
+  // Largest mesh FillHoles accepts (it is held in memory while it is
+  // repaired and filled: about 100 bytes per face).
+  int64_t fill_max_vertices = 5000000;
+  int64_t fill_max_faces = 10000000;
   // Compute time per request; a request's time_budget_ms and the client's
   // deadline can only shorten it.
   int max_compute_ms = 60000;

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "rpc/batch_reactor.h"
+#include "rpc/fill_holes_reactor.h"
 #include "rpc/source_reactor.h"
 #include "rpc/triangulate_reactor.h"
 
@@ -32,6 +33,11 @@ TriangulatorService::Triangulate(grpc::CallbackServerContext* context,
 grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>*
 TriangulatorService::TriangulateBatch(grpc::CallbackServerContext* context) {
   return new BatchReactor(runner_, context);
+}
+
+grpc::ServerBidiReactor<v1::FillHolesRequest, v1::FillHolesResponse>*
+TriangulatorService::FillHoles(grpc::CallbackServerContext* context) {
+  return new FillHolesReactor(runner_, context);
 }
 
 grpc::ServerWriteReactor<v1::SourceChunk>* TriangulatorService::GetSource(

@@ -21,6 +21,7 @@
 #define DOT_FILL_HOLES_H_
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -186,8 +187,14 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
 int64_t PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                            int32_t first_new_id, const HolePatch& patch);
 
+// Control's cancel and deadline are honoured in every stage; its progress
+// callback is not used (holes run at once): `on_hole`, when given, is called
+// after each selected hole with (holes done, holes selected), from the
+// computing threads, one call at a time.
+using HoleProgressFn = std::function<void(int done, int total)>;
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options = {},
-                     const Control& control = {});
+                     const Control& control = {},
+                     const HoleProgressFn& on_hole = nullptr);
 
 }  // namespace dot
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <mutex>
 #include <thread>
 
 #include "dot/validate.h"
@@ -199,7 +200,7 @@ Options FillOptions::DefaultTriangulateOptions() {
 }
 
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
-                     const Control& control) {
+                     const Control& control, const HoleProgressFn& on_hole) {
   const auto t_start = Clock::now();
   FillResult out;
   out.status = CheckMesh(mesh);
@@ -225,11 +226,19 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       options.threads > 0
           ? options.threads
           : static_cast<int>(std::thread::hardware_concurrency());
+  const int selected =
+      static_cast<int>(std::count(skip.begin(), skip.end(), std::string()));
+  std::mutex progress_mu;
+  int done = 0;
   tbb::task_arena arena(std::max(1, threads));
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
       if (!skip[i].empty()) return;
       FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
+      if (on_hole) {
+        std::lock_guard<std::mutex> lock(progress_mu);
+        on_hole(++done, selected);
+      }
     });
   });
   for (const HoleWork& w : work) {

@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// FillHoles over a real server on loopback: the mesh streamed in and out
+// (a million faces), bad meshes answered INVALID_ARGUMENT with the server
+// staying up, cancel in the middle of a fill.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "fill_call.h"
+#include "fixtures/meshes.h"
+#include "fixtures/service_fixture.h"
+#include "wire/fill_wire.h"
+
+namespace dot {
+namespace {
+
+using testing::LoopbackConfig;
+using testing::StartServer;
+
+PolygonSoup ToSoup(const MeshData& m) {
+  PolygonSoup s{m.vertices, {}};
+  for (const Triangle& t : m.triangles) s.faces.push_back({t[0], t[1], t[2]});
+  return s;
+}
+
+// A torus of nu x nv quads with `holes` holes cut out of it.
+MeshData HoleyTorus(int nu, int nv, int holes) {
+  MeshData holey, removed;
+  EXPECT_TRUE(
+      CutHoles(testing::BumpyTorus(nu, nv), holes, 120, 3, &holey, &removed)
+          .ok());
+  return holey;
+}
+
+TEST(FillHolesServiceTest, AMillionFacesStreamInAndOutAsFilledLocally) {
+  auto config = LoopbackConfig();
+  config.service.chunk_bytes = 256 << 10;  // many response chunks too
+  auto s = StartServer(config);
+  const MeshData m = HoleyTorus(1000, 500, 6);
+  ASSERT_GT(m.triangles.size(), 990000u);
+  const PolygonSoup soup = ToSoup(m);
+  v1::FillOptions options;
+  const auto requests = wire::MakeFillRequests("big", options, soup, 1 << 20);
+  EXPECT_GT(requests.size(), 10u);
+  const auto t0 = std::chrono::steady_clock::now();
+  const client::FillOutcome remote =
+      client::FillRemote(*s.stub, "big", options, soup, 300);
+  ASSERT_TRUE(remote.status.ok()) << remote.status.error_message();
+  const double remote_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
+  const client::FillOutcome local = client::FillLocal("big", options, soup);
+  ASSERT_TRUE(local.status.ok()) << local.status.error_message();
+  std::printf("1M faces, 6 holes: remote %.2f s, local %.2f s\n", remote_s,
+              local.latency_ms / 1000);
+  EXPECT_EQ(remote.report.filled(), 6);
+  EXPECT_TRUE(remote.report.closed());
+  EXPECT_EQ(remote.mesh.triangles, local.mesh.triangles);
+  ASSERT_EQ(remote.mesh.vertices.size(), local.mesh.vertices.size());
+  for (size_t v = 0; v < local.mesh.vertices.size(); ++v) {
+    ASSERT_EQ(remote.mesh.vertices[v], local.mesh.vertices[v]) << v;
+  }
+  EXPECT_EQ(remote.report.holes_size(), 6);
+}
+
+grpc::Status SendRaw(v1::Triangulator::Stub& stub,
+                     const std::vector<v1::FillHolesRequest>& messages) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() +
+                       std::chrono::seconds(30));
+  auto stream = stub.FillHoles(&context);
+  for (const auto& m : messages) {
+    if (!stream->Write(m)) break;
+  }
+  stream->WritesDone();
+  v1::FillHolesResponse r;
+  while (stream->Read(&r)) {
+  }
+  return stream->Finish();
+}
+
+v1::FillHolesRequest Message(std::vector<double> vertices,
+                             std::vector<uint32_t> faces) {
+  v1::FillHolesRequest m;
+  for (double x : vertices) m.add_vertices(x);
+  for (uint32_t f : faces) m.add_faces(f);
+  return m;
+}
+
+TEST(FillHolesServiceTest, BadMeshesAreRefusedNamingTheProblem) {
+  auto s = StartServer(LoopbackConfig());
+  const std::vector<double> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  struct Case {
+    std::vector<v1::FillHolesRequest> messages;
+    const char* expected;
+  };
+  v1::FillHolesRequest nan = Message({0, 0, 0, NAN, 0, 0, 0, 1, 0}, {0, 1, 2});
+  v1::FillHolesRequest fin =
+      Message({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1},
+              {0, 1, 2, 1, 0, 3, 0, 1, 4});
+  v1::FillHolesRequest late_options = Message({}, {0, 1, 2});
+  late_options.set_id("late");
+  v1::FillHolesRequest polygons = Message(tri, {0, 1, 2});
+  polygons.add_face_sizes(4);
+  v1::FillHolesRequest stage = Message(tri, {0, 1, 2});
+  stage.mutable_options()->set_fairing_continuity(5);
+  const std::vector<Case> cases = {
+      {{Message(tri, {0, 1, 9})}, "face 0 has vertex index 9"},
+      {{Message({0, 0, 0, 1}, {})}, "not a multiple of 3"},
+      {{Message(tri, {0, 1})}, "not a multiple of 3"},
+      {{nan}, "vertex 1 has a non-finite coordinate"},
+      {{fin}, "shared by 3 faces"},
+      {{Message(tri, {}), late_options}, "belong in the first message"},
+      {{polygons}, "face_sizes add up to 4 but 3"},
+      {{stage}, "fairing_continuity must be 0, 1 or 2"},
+      {{Message(tri, {})}, "the mesh has no faces"},
+      {{}, "no mesh was sent"},
+  };
+  for (const Case& c : cases) {
+    const grpc::Status st = SendRaw(*s.stub, c.messages);
+    EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT)
+        << c.expected << ": " << st.error_message();
+    EXPECT_NE(st.error_message().find(c.expected), std::string::npos)
+        << "got: " << st.error_message() << "\nexpected: " << c.expected;
+  }
+  // Still up and right.
+  const MeshData m = HoleyTorus(40, 20, 2);
+  const auto ok = client::FillRemote(*s.stub, "after", {}, ToSoup(m), 60);
+  ASSERT_TRUE(ok.status.ok()) << ok.status.error_message();
+  EXPECT_EQ(ok.report.filled(), 2);
+}
+
+TEST(FillHolesServiceTest, LimitsAndCancel) {
+  auto config = LoopbackConfig();
+  config.service.fill_max_faces = 1000;
+  auto s = StartServer(config);
+  const MeshData big = HoleyTorus(100, 50, 3);
+  auto st = client::FillRemote(*s.stub, "big", {}, ToSoup(big), 60).status;
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(st.error_message().find("more than 1000 faces"), std::string::npos)
+      << st.error_message();
+
+  // Cancelled by the client mid-fill: the server stops and stays up.
+  auto roomy = StartServer(LoopbackConfig());
+  const MeshData m = HoleyTorus(600, 300, 6);
+  const PolygonSoup soup = ToSoup(m);
+  grpc::ClientContext context;
+  auto stream = roomy.stub->FillHoles(&context);
+  for (const auto& msg : wire::MakeFillRequests("c", {}, soup, 1 << 20)) {
+    ASSERT_TRUE(stream->Write(msg));
+  }
+  stream->WritesDone();
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto t0 = std::chrono::steady_clock::now();
+  context.TryCancel();
+  v1::FillHolesResponse r;
+  while (stream->Read(&r)) {
+  }
+  EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                .count(),
+            5.0);
+  const auto after = client::FillRemote(*roomy.stub, "after", {},
+                                        ToSoup(HoleyTorus(40, 20, 1)), 60);
+  EXPECT_TRUE(after.status.ok()) << after.status.error_message();
+}
+
+}  // namespace
+}  // namespace dot
