@@ -247,7 +247,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
                            : "")
            << ", " << (r.closed() ? "closed" : "still open") << "; +"
            << r.added_vertices() << " vertices, +" << r.added_faces()
-           << " faces, " << o.latency_ms << " ms"
+           << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms"
            << (written.empty() ? "" : " -> " + written) << std::endl;
     }
     if (!o.status.ok()) {

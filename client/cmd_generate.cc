@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// dotctl generate curve|hole : test polygons (the paper's curves, and hole
-// boundaries grown on a triangle mesh), written as "x y z [nx ny nz]" text.
+// dotctl generate curve|hole|holes : test data. Polygons (the paper's
+// curves, and hole boundaries grown on a triangle mesh) as "x y z
+// [nx ny nz]" text; meshes with holes cut out (and the removed patches).
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.h"
 #include "exit_codes.h"
 
 namespace dot::client {
+
+void AddGenerateHolesCommand(CLI::App* gen, Context* ctx);
 
 void AddGenerateCommand(CLI::App& app, Context* ctx) {
   CLI::App* gen = app.add_subcommand(
@@ -56,6 +60,7 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       ->capture_default_str();
   hole->add_option("--seed", h->seed, "random seed")->capture_default_str();
   hole->add_option("-o,--output", h->out, "polygon file to write")->required();
+  AddGenerateHolesCommand(gen, ctx);
   hole->callback([h, ctx] {
     MeshData mesh;
     Hole result;
@@ -70,6 +75,57 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
     std::cout << "hole of " << result.triangles << " triangles, boundary of "
               << result.boundary.vertices.size() << " vertices -> " << h->out
               << "\n";
+  });
+}
+
+void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
+  struct HolesFlags {
+    std::string mesh, out, removed;
+    int count = 10, triangles = 200;
+    uint64_t seed = 1;
+  };
+  auto h = std::make_shared<HolesFlags>();
+  CLI::App* holes = gen->add_subcommand(
+      "holes",
+      "Cut k separate holes, grown to a size, out of a closed mesh (test data "
+      "for fill-holes); the removed patches are written too (ground truth)");
+  holes->add_option("mesh", h->mesh, "closed triangle mesh")->required();
+  holes->add_option("-k,--count", h->count, "holes to cut")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  holes->add_option("-t,--triangles", h->triangles, "triangles per hole")
+      ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
+  holes->add_option("--seed", h->seed, "random seed")->capture_default_str();
+  holes->add_option("-o,--output", h->out, "the mesh with holes")->required();
+  holes->add_option("--removed", h->removed,
+                    "where the removed patches go (default: OUTPUT's name "
+                    "with .removed before the extension)");
+  holes->callback([h, ctx] {
+    MeshData mesh, holey, removed;
+    Status s = ReadMeshFile(h->mesh, &mesh);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitUsage;
+      return;
+    }
+    std::string removed_path = h->removed;
+    if (removed_path.empty()) {
+      const std::filesystem::path p(h->out);
+      removed_path = (p.parent_path() /
+                      (p.stem().string() + ".removed" + p.extension().string()))
+                         .string();
+    }
+    s = CutHoles(mesh, h->count, h->triangles, h->seed, &holey, &removed);
+    if (s.ok()) s = WriteMeshFile(h->out, holey);
+    if (s.ok()) s = WriteMeshFile(removed_path, removed);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitFailed;
+      return;
+    }
+    std::cout << h->count << " holes of " << h->triangles << " triangles -> "
+              << h->out << " (removed patches: " << removed_path << ")\n";
   });
 }
 
