@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fixtures/dotctl_run.h"
 #include "fixtures/service_fixture.h"
 #include "remote_call.h"
 #include "request_flags.h"
@@ -19,12 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("dot-" + name + "-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+using testing::CliRun;
+using testing::Dotctl;
+using testing::TempDir;
 
 // A CA, a server certificate for 127.0.0.1/localhost and a client
 // certificate, made with the openssl command line.
@@ -84,22 +82,6 @@ TEST(TlsTest, TlsAndMutualTls) {
   mutual.tls_key = (d / "client.key").string();
   EXPECT_TRUE(CallOver(mutual).ok());
   fs::remove_all(d);
-}
-
-struct CliRun {
-  int code;
-  std::string out;
-};
-
-CliRun Dotctl(const std::string& args) {
-  const std::string cmd = std::string(DOT_DOTCTL_PATH) + " " + args + " 2>&1";
-  CliRun r{0, ""};
-  FILE* p = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
 }
 
 class CliTest : public ::testing::Test {

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl fill-holes and generate holes end to end: over a real server and
+// locally, files and stdin/stdout, the JSON report, exit codes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "dot/dot.h"
+#include "fixtures/dotctl_run.h"
+#include "fixtures/meshes.h"
+#include "fixtures/service_fixture.h"
+
+namespace dot {
+namespace {
+
+using testing::Dotctl;
+
+class FillHolesCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    server_ = testing::StartServer(testing::LoopbackConfig());
+    dir_ = testing::TempDir("fill-cli");
+    flag_ = "--server " + server_.address + " ";
+    ASSERT_TRUE(
+        WriteMeshFile(Path("torus.off"), testing::BumpyTorus(60, 30)).ok());
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Path(const std::string& name) const {
+    return (dir_ / name).string();
+  }
+
+  testing::RunningServer server_;
+  std::filesystem::path dir_;
+  std::string flag_;
+};
+
+TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
+  auto r = Dotctl("generate holes " + Path("torus.off") +
+                  " -k 4 -t 60 --seed 3 -o " + Path("holey.off"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(Path("holey.removed.off")));
+  r = Dotctl(flag_ + "fill-holes " + Path("holey.off") + " -o " +
+             Path("remote.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("4 of 4 holes filled, closed"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(" hole edges  status"), std::string::npos) << r.out;
+  r = Dotctl("fill-holes --local " + Path("holey.off") + " -o " +
+             Path("local.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  MeshData remote, local, holey;
+  ASSERT_TRUE(ReadMeshFile(Path("remote.ply"), &remote).ok());
+  ASSERT_TRUE(ReadMeshFile(Path("local.ply"), &local).ok());
+  ASSERT_TRUE(ReadMeshFile(Path("holey.off"), &holey).ok());
+  EXPECT_EQ(remote.triangles, local.triangles);
+  EXPECT_EQ(remote.vertices.size(), local.vertices.size());
+  // Input vertices first and exact (binary PLY keeps doubles).
+  for (size_t v = 0; v < holey.vertices.size(); ++v) {
+    ASSERT_EQ(remote.vertices[v], holey.vertices[v]) << v;
+  }
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(remote, &loops).ok());
+  EXPECT_TRUE(loops.empty());
+}
+
+TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
+  ASSERT_EQ(Dotctl("generate holes " + Path("torus.off") + " -k 2 -t 40 -o " +
+                   Path("holey.off"))
+                .code,
+            0);
+  auto r = Dotctl(flag_ + "fill-holes " + Path("holey.off") + " --json -o " +
+                  Path("out.obj") + " --stage refine");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("{\"version\":1,", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\"rpc_status\":\"OK\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"filled\":2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"escalation\":\"delaunay\""), std::string::npos);
+
+  // stdin to stdout: an OFF mesh comes out, the summary goes to stderr.
+  r = Dotctl("fill-holes --local - --input-format off -o - < " +
+             Path("holey.off") + " 2>/dev/null | head -1");
+  EXPECT_EQ(r.out, "OFF\n");
+  r = Dotctl("fill-holes --local - -o -");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("needs --input-format"), std::string::npos) << r.out;
+
+  // Unreadable and broken inputs: exit 2, the reason named.
+  r = Dotctl("fill-holes --local " + Path("missing.off"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("cannot open"), std::string::npos) << r.out;
+  {
+    std::ofstream bad(Path("fin.off"));
+    bad << "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
+           "3 0 1 2\n3 1 0 3\n3 0 1 4\n";
+  }
+  r = Dotctl(flag_ + "fill-holes " + Path("fin.off"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("INVALID_ARGUMENT"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shared by 3 faces"), std::string::npos) << r.out;
+  r = Dotctl("fill-holes --local " + Path("holey.off") + " -o " +
+             Path("out.xyz"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("cannot tell the mesh format"), std::string::npos);
+
+  // A selection that leaves nothing: every selected hole filled, exit 0,
+  // but the mesh stays open.
+  r = Dotctl("fill-holes --local " + Path("holey.off") +
+             " --max-hole-edges 3 -q -o " + Path("same.off"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 of 0 holes filled (2 skipped), still open"),
+            std::string::npos)
+      << r.out;
+}
+
+}  // namespace
+}  // namespace dot
