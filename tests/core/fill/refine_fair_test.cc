@@ -82,9 +82,8 @@ TEST(RefineFairTest, FairingKeepsAPlaneFlat) {
   }
 }
 
-// A UV sphere of radius 1 with a cap cut out: the faired patch stays near
-// the sphere; the flat DOT patch does not.
-TEST(RefineFairTest, FairingFollowsASphere) {
+// A UV sphere of radius 1 with the cap x > 0.85 cut out.
+MeshData SphereWithCapCut() {
   MeshData sphere;
   const int rings = 40, segments = 80;
   sphere.vertices.push_back({0, 0, 1});
@@ -110,13 +109,17 @@ TEST(RefineFairTest, FairingFollowsASphere) {
       sphere.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   }
-  // Cut a cap around (1, 0, 0).
-  const MeshData m = WithoutFaces(sphere, [&](int32_t f) {
+  return WithoutFaces(sphere, [&](int32_t f) {
     const Triangle& t = sphere.triangles[f];
     const Vec3 c = (1.0 / 3) * (sphere.vertices[t[0]] + sphere.vertices[t[1]] +
                                 sphere.vertices[t[2]]);
     return c.x > 0.85;
   });
+}
+
+// The faired patch follows the sphere; the flat DOT patch does not.
+TEST(RefineFairTest, FairingFollowsASphere) {
+  const MeshData m = SphereWithCapCut();
   auto worst = [&](const FillResult& r) {
     double d = 0;
     for (size_t v = m.vertices.size(); v < r.mesh.vertices.size(); ++v) {
@@ -142,6 +145,37 @@ TEST(RefineFairTest, FairingFollowsASphere) {
               worst(faired), worst(flat));
   EXPECT_LT(worst(faired), 0.02);
   EXPECT_GT(worst(flat), 0.05);
+}
+
+// A floating square just inside the sphere's cap: the faired patch would
+// pierce it, so fairing is undone and the refined patch, which stays below
+// the square, is kept (and said so).
+TEST(RefineFairTest, FairingThatWouldIntersectIsUndone) {
+  MeshData m = SphereWithCapCut();
+  const auto s = static_cast<int32_t>(m.vertices.size());
+  for (const Vec3& p : {Vec3{0.96, -0.2, -0.2}, Vec3{0.96, 0.2, -0.2},
+                        Vec3{0.96, 0.2, 0.2}, Vec3{0.96, -0.2, 0.2}}) {
+    m.vertices.push_back(p);
+  }
+  m.triangles.push_back({s, s + 1, s + 2});
+  m.triangles.push_back({s, s + 2, s + 3});
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(m, &loops).ok());
+  FillOptions o;
+  for (const HoleLoop& l : loops) {
+    if (l.vertices.size() > 4) o.selection.ids.push_back(l.id);
+  }
+  ASSERT_EQ(o.selection.ids.size(), 1u);
+  const FillResult r = FillHoles(m, o);
+  testing::ExpectFilledMesh(m, r, /*closed=*/false, "sphere and square");
+  ASSERT_EQ(r.report.filled, 1);
+  const HoleReport& h = r.report.holes[o.selection.ids[0]];
+  EXPECT_FALSE(h.faired);
+  EXPECT_GT(h.refined_vertices, 0);
+  EXPECT_NE(h.reason.find("fairing undone"), std::string::npos) << h.reason;
+  // Without the square the same hole is faired.
+  const FillResult alone = FillHoles(SphereWithCapCut());
+  EXPECT_TRUE(alone.report.holes[0].faired);
 }
 
 }  // namespace
