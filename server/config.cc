@@ -22,8 +22,11 @@ void Add(CLI::App& app, const std::string& name, T* value,
 template <typename T>
 void AddSize(CLI::App& app, const std::string& name, int shift, T* bytes,
              const std::string& env, const std::string& help) {
-  const int64_t max =
-      static_cast<int64_t>(std::numeric_limits<T>::max()) >> shift;
+  // Unsigned fields (size_t) reach past int64_t: clamp before shifting.
+  const uint64_t type_max = std::min<uint64_t>(
+      static_cast<uint64_t>(std::numeric_limits<T>::max()),
+      static_cast<uint64_t>(std::numeric_limits<int64_t>::max()));
+  const int64_t max = static_cast<int64_t>(type_max) >> shift;
   app.add_option_function<int64_t>(
          name,
          [bytes, shift](int64_t v) { *bytes = static_cast<T>(v << shift); },
