@@ -202,6 +202,21 @@ Status FillRequestReader::Add(const v1::FillHolesRequest& m) {
                       "the mesh has more than " + std::to_string(max_faces_) +
                           " faces, the server's limit");
   }
+  // Corners, not faces, are what polygons cost (each is triangulated).
+  corners_ += static_cast<size_t>(m.faces_size());
+  if (corners_ > 3 * max_faces_) {
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "the mesh's faces have more than " +
+                          std::to_string(3 * max_faces_) +
+                          " corners in all, the server's limit");
+  }
+  for (uint32_t k : m.face_sizes()) {
+    if (k > kMaxPolygonCorners) {
+      return InvalidArgument(
+          where + " has a face of " + std::to_string(k) + " corners; at most " +
+          std::to_string(kMaxPolygonCorners) + " are accepted");
+    }
+  }
   int next = 0;
   for (size_t f = 0; f < faces; ++f) {
     const int k =

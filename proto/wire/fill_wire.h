@@ -32,7 +32,7 @@ std::vector<v1::FillHolesRequest> MakeFillRequests(
 // Collects a request stream into a polygon soup, refusing (naming the
 // message and the problem) what does not fit: partial coordinates, sizes
 // that do not add up, more than `max_vertices` vertices or `max_faces`
-// faces.
+// faces (or 3 x `max_faces` corners), polygons of more than 1000 corners.
 class FillRequestReader {
  public:
   FillRequestReader(size_t max_vertices, size_t max_faces)
@@ -44,8 +44,9 @@ class FillRequestReader {
   const v1::FillOptions& options() const { return options_; }
 
  private:
+  static constexpr uint32_t kMaxPolygonCorners = 1000;
   size_t max_vertices_, max_faces_;
-  size_t messages_ = 0;
+  size_t messages_ = 0, corners_ = 0;
   std::string id_;
   v1::FillOptions options_;
   PolygonSoup soup_;

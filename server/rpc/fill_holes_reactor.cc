@@ -34,6 +34,29 @@ void FillHolesReactor::OnReadDone(bool ok) {
         FinishWith(refused);
         return;
       }
+      // Options are checked before the mesh is read, not after.
+      FillOptions options;
+      const Status s = wire::FillOptionsFromWire(request_.options(), &options);
+      if (!s.ok()) {
+        FinishWith(wire::ToGrpcStatus(s));
+        return;
+      }
+    }
+    // A slow upload is bound by the same deadline, drain and cancel as the
+    // fill itself.
+    if (job_->cancel) {
+      FinishWith(job_->drained
+                     ? grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                                    "server is shutting down; retry on "
+                                    "another replica")
+                     : grpc::Status(grpc::StatusCode::CANCELLED,
+                                    "cancelled by the client"));
+      return;
+    }
+    if (Clock::now() >= job_->deadline) {
+      FinishWith({grpc::StatusCode::DEADLINE_EXCEEDED,
+                  "the mesh did not arrive within the time limit"});
+      return;
     }
     const Status s = reader_.Add(request_);
     if (!s.ok()) {

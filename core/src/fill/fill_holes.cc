@@ -11,9 +11,10 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <unordered_set>
 
-#include "dot/validate.h"
 #include "fill/mesh_topology.h"
+#include "fill/patch_check.h"
 #include "mesh/edge_index.h"
 #include "util/run_control.h"
 
@@ -92,6 +93,11 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
              const Control& control, HoleWork* w) {
   const auto first_new = static_cast<int32_t>(mesh.vertices.size());
   HoleReport& r = w->report;
+  RunTicker ticker(control, Stage::kValidate);
+  if (!ticker.Poll()) {  // a cancel skips the holes not yet started
+    w->status = ticker.status();
+    return;
+  }
   auto t0 = Clock::now();
   Status s = TriangulateHole(mesh, topo, loop, options, control, first_new,
                              &w->patch, &r);
@@ -142,38 +148,90 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
   r.status = HoleStatus::kFilled;
 }
 
+// The patches merged so far, for the checks between holes (each hole was
+// checked against the input mesh alone, in parallel).
+struct Merged {
+  std::vector<bool> split;             // input faces split so far
+  std::unordered_set<uint64_t> edges;  // undirected edges of new faces
+  std::vector<Triangle> faces;         // new faces and pieces, mesh ids
+};
+
 // Appends the hole's new vertices and faces; split faces are replaced in
 // place by their first piece (so unsplit faces keep their index), the other
-// pieces appended. False when another hole already split one of its faces.
-bool Merge(const MeshData& input, HoleWork* w, std::vector<bool>* split,
-           FillResult* out) {
-  for (int32_t f : w->patch.split_faces) {
-    if ((*split)[f]) return false;
+// pieces appended. Refused, with the reason, when the hole would split a
+// face another hole split, reuse an edge of another hole's patch (two
+// loops through the same vertices) or intersect another hole's patch.
+std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
+                  FillResult* out) {
+  for (int32_t f : w.patch.split_faces) {
+    if (merged->split[f]) return "a face it splits was split by another hole";
   }
   const auto first_new = static_cast<int32_t>(input.vertices.size());
   const auto offset =
       static_cast<int32_t>(out->mesh.vertices.size()) - first_new;
-  auto id = [&](int32_t v) { return v < first_new ? v : v + offset; };
   auto remap = [&](Triangle t) {
-    for (int32_t& v : t) v = id(v);
+    for (int32_t& v : t) v = v < first_new ? v : v + offset;
     return t;
   };
+  std::vector<Triangle> fresh;  // the patch, then the pieces, in mesh ids
+  for (const Triangle& t : w.patch.faces) fresh.push_back(remap(t));
+  for (const auto& pieces : w.patch.pieces) {
+    for (const Triangle& t : pieces) fresh.push_back(remap(t));
+  }
+  for (const Triangle& t : fresh) {
+    for (int k = 0; k < 3; ++k) {
+      if (merged->edges.count(UndirectedEdgeKey(t[k], t[(k + 1) % 3]))) {
+        return "its patch would share edge " + std::to_string(t[k]) + "-" +
+               std::to_string(t[(k + 1) % 3]) + " with another hole's";
+      }
+    }
+  }
   out->mesh.vertices.insert(out->mesh.vertices.end(),
-                            w->patch.new_vertices.begin(),
-                            w->patch.new_vertices.end());
-  for (size_t k = 0; k < w->patch.split_faces.size(); ++k) {
-    const int32_t f = w->patch.split_faces[k];
-    (*split)[f] = true;
-    const auto& pieces = w->patch.pieces[k];
+                            w.patch.new_vertices.begin(),
+                            w.patch.new_vertices.end());
+  if (!merged->faces.empty()) {
+    auto point = [&](int32_t v) -> const Vec3& {
+      return out->mesh.vertices[v];
+    };
+    Box3 box;
+    for (const Triangle& t : fresh) {
+      for (int32_t v : t) box.Add(point(v));
+    }
+    std::vector<Triangle> check = fresh;
+    for (const Triangle& t : merged->faces) {
+      Box3 b;
+      for (int32_t v : t) b.Add(point(v));
+      if (b.Meets(box)) check.push_back(t);
+    }
+    // Pairs within the hole were checked already: count only the others.
+    const int64_t pairs = CountPairsAmong(point, check, fresh.size()) -
+                          CountPairsAmong(point, fresh, fresh.size());
+    if (pairs > 0) {
+      out->mesh.vertices.resize(out->mesh.vertices.size() -
+                                w.patch.new_vertices.size());
+      return "its patch intersects another hole's (" + std::to_string(pairs) +
+             " pairs of faces)";
+    }
+  }
+  for (size_t k = 0; k < w.patch.split_faces.size(); ++k) {
+    const int32_t f = w.patch.split_faces[k];
+    merged->split[f] = true;
+    const auto& pieces = w.patch.pieces[k];
     out->mesh.triangles[f] = remap(pieces[0]);
     for (size_t p = 1; p < pieces.size(); ++p) {
       out->mesh.triangles.push_back(remap(pieces[p]));
     }
   }
-  for (const Triangle& t : w->patch.faces) {
+  for (const Triangle& t : w.patch.faces) {
     out->mesh.triangles.push_back(remap(t));
   }
-  return true;
+  for (const Triangle& t : fresh) {
+    for (int k = 0; k < 3; ++k) {
+      merged->edges.insert(UndirectedEdgeKey(t[k], t[(k + 1) % 3]));
+    }
+    merged->faces.push_back(t);
+  }
+  return "";
 }
 
 bool Closed(const std::vector<Triangle>& triangles) {
@@ -249,12 +307,16 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
   }
 
   out.mesh = mesh;
-  std::vector<bool> split(mesh.triangles.size(), false);
+  Merged merged;
+  merged.split.assign(mesh.triangles.size(), false);
   for (HoleWork& w : work) {
     HoleReport& r = w.report;
-    if (r.status == HoleStatus::kFilled && !Merge(mesh, &w, &split, &out)) {
-      r.status = HoleStatus::kFailed;
-      r.reason = "a face it splits was split by another hole; fill it alone";
+    if (r.status == HoleStatus::kFilled) {
+      const std::string refused = Merge(mesh, w, &merged, &out);
+      if (!refused.empty()) {
+        r.status = HoleStatus::kFailed;
+        r.reason = refused + ": left open (fill it alone with --holes)";
+      }
     }
     switch (r.status) {
       case HoleStatus::kFilled:

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "dot/fill_holes.h"
+#include "fill/mesh_topology.h"
 #include "mesh/edge_index.h"
 
 namespace dot {
@@ -86,6 +88,70 @@ void SplitWalk(const MeshData& mesh, const std::vector<HoleEdge>& walk,
   emit(0);
 }
 
+// The border edge that continues the gap `in` arrives through. At an
+// ordinary border vertex that is the one unused edge leaving it. At a pinched
+// vertex, where fans of faces and gaps alternate around the vertex, it is
+// the end of the *next* fan: not the other end of `in`'s own fan (found by
+// turning through its faces), and among the rest the first met turning
+// clockwise (seen from the vertex normal) from the arriving edge, since
+// `in`'s face lies to its left. `topo` is built on first need.
+std::vector<HoleEdge>::const_iterator NextAroundFan(
+    const MeshData& mesh, const HoleEdge& in,
+    const std::vector<HoleEdge>& border,
+    std::vector<HoleEdge>::const_iterator first, const std::vector<bool>& used,
+    std::shared_ptr<const MeshTopology>* topo) {
+  const int32_t v = in.to;
+  std::vector<std::vector<HoleEdge>::const_iterator> candidates;
+  for (auto it = first; it != border.end() && it->from == v; ++it) {
+    if (!used[it - border.begin()]) candidates.push_back(it);
+  }
+  if (candidates.size() <= 1) {
+    return candidates.empty() ? border.end() : candidates[0];
+  }
+  if (!*topo) *topo = BuildMeshTopology(mesh);
+  const MeshTopology& t = **topo;
+  // The other end of in's fan: turn from in.face across sides w -> v.
+  int32_t face = in.face, own_end = -1;
+  Vec3 normal;
+  for (int32_t step = t.face_begin[v]; step < t.face_begin[v + 1]; ++step) {
+    const Triangle& f = mesh.triangles[face];
+    const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+    const int32_t w = f[(k + 2) % 3];
+    int32_t across = -1;
+    for (int32_t j = t.face_begin[v]; j < t.face_begin[v + 1]; ++j) {
+      const Triangle& g = mesh.triangles[t.faces[j]];
+      for (int c = 0; c < 3; ++c) {
+        if (g[c] == v && g[(c + 1) % 3] == w) across = t.faces[j];
+      }
+    }
+    if (across < 0) {
+      own_end = w;
+      break;
+    }
+    face = across;
+  }
+  for (int32_t j = t.face_begin[v]; j < t.face_begin[v + 1]; ++j) {
+    const Triangle& g = mesh.triangles[t.faces[j]];
+    const Vec3& a = mesh.vertices[g[0]];
+    normal = normal + Cross(mesh.vertices[g[1]] - a, mesh.vertices[g[2]] - a);
+  }
+  const Vec3& p = mesh.vertices[v];
+  const Vec3 back = mesh.vertices[in.from] - p;
+  auto clockwise = [&](const HoleEdge& e) {
+    const Vec3 d = mesh.vertices[e.to] - p;
+    const double angle = std::atan2(Dot(normal, Cross(back, d)), Dot(back, d));
+    return angle <= 0 ? -angle : 2 * kPi - angle;
+  };
+  std::vector<HoleEdge>::const_iterator best = border.end();
+  double best_angle = 0;
+  for (auto it : candidates) {
+    if (it->to == own_end && candidates.size() > 1) continue;
+    const double a = clockwise(*it);
+    if (best == border.end() || a < best_angle) best = it, best_angle = a;
+  }
+  return best;
+}
+
 }  // namespace
 
 Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
@@ -104,6 +170,7 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
         [](const HoleEdge& e, int32_t x) { return e.from < x; });
   };
   std::vector<bool> used(border.size(), false);
+  std::shared_ptr<const MeshTopology> topo;  // for pinched vertices
   std::vector<int32_t> position(mesh.vertices.size(), -1);
   int32_t borders = 0;
   for (size_t first = 0; first < border.size(); ++first) {
@@ -115,12 +182,9 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
       walk.push_back(border[cur]);
       const int32_t v = border[cur].to;
       if (v == border[first].from) break;
-      auto next = out_of(v);
-      while (next != border.end() && next->from == v &&
-             used[next - border.begin()]) {
-        ++next;
-      }
-      if (next == border.end() || next->from != v) {
+      auto next =
+          NextAroundFan(mesh, border[cur], border, out_of(v), used, &topo);
+      if (next == border.end()) {
         return InvalidArgument("border vertex " + std::to_string(v) +
                                " has more border edges arriving than "
                                "leaving (the mesh is not consistently "

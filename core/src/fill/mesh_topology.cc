@@ -6,12 +6,6 @@
 
 namespace dot {
 
-bool MeshTopology::Joined(int32_t a, int32_t b) const {
-  return std::find(ring.begin() + ring_begin[a],
-                   ring.begin() + ring_begin[a + 1],
-                   b) != ring.begin() + ring_begin[a + 1];
-}
-
 std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh) {
   auto topo = std::make_shared<MeshTopology>();
   const size_t nv = mesh.vertices.size();

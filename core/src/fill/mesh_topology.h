@@ -14,8 +14,6 @@ namespace dot {
 struct MeshTopology {
   std::vector<int32_t> face_begin, faces;  // vertex v: faces[face_begin[v]..]
   std::vector<int32_t> ring_begin, ring;   // vertex v: its neighbours
-
-  bool Joined(int32_t a, int32_t b) const;
 };
 
 }  // namespace dot

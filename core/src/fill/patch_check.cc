@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // A patch against itself and the mesh faces near it (those whose bounding
 // boxes meet the patch's), with the exact predicates of the validator.
+#include "fill/patch_check.h"
+
 #include <algorithm>
 #include <limits>
 #include <unordered_map>
@@ -11,25 +13,30 @@
 #include "fill/mesh_topology.h"
 
 namespace dot {
-namespace {
 
-struct Box3 {
-  Vec3 lo{std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi{-lo.x, -lo.y, -lo.z};
+void Box3::Add(const Vec3& p) {
+  lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+  hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+}
 
-  void Add(const Vec3& p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+bool Box3::Meets(const Box3& o) const {
+  return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y &&
+         lo.z <= o.hi.z && o.lo.z <= hi.z;
+}
+
+int64_t CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
+                        std::vector<Triangle> faces, size_t checked) {
+  std::unordered_map<int32_t, int32_t> local;
+  std::vector<Vec3> points;
+  for (Triangle& t : faces) {
+    for (int32_t& v : t) {
+      auto [it, added] = local.emplace(v, static_cast<int32_t>(points.size()));
+      if (added) points.push_back(point(v));
+      v = it->second;
+    }
   }
-  bool Meets(const Box3& o) const {
-    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y &&
-           o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
-  }
-};
-
-}  // namespace
+  return CountIntersectingPairs(points, faces, checked);
+}
 
 int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
                            int32_t first_new_id, const HolePatch& patch) {
@@ -55,17 +62,7 @@ int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
       faces.push_back(t);
     }
   }
-  // Compact numbering over just these faces.
-  std::unordered_map<int32_t, int32_t> local;
-  std::vector<Vec3> points;
-  for (Triangle& t : faces) {
-    for (int32_t& v : t) {
-      auto [it, added] = local.emplace(v, static_cast<int32_t>(points.size()));
-      if (added) points.push_back(point(v));
-      v = it->second;
-    }
-  }
-  return CountIntersectingPairs(points, faces, patch.faces.size());
+  return CountPairsAmong(point, std::move(faces), patch.faces.size());
 }
 
 }  // namespace dot

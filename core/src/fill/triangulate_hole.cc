@@ -75,15 +75,18 @@ Status SplitFace(
   const Triangle& t = mesh.triangles[f];
   // The face's boundary with the inserted ids; the loop runs against it.
   std::vector<int32_t> ring;
+  std::vector<std::pair<size_t, size_t>> sides;  // ring ranges, corners incl.
   int split_sides = 0, last_split = 0;
   for (int s = 0; s < 3; ++s) {
     const int32_t x = t[s], y = t[(s + 1) % 3];
+    const size_t begin = ring.size();
     ring.push_back(x);
     auto it = inserted.find({y, x});
     if (it == inserted.end()) continue;
     ++split_sides;
     last_split = s;
     ring.insert(ring.end(), it->second.rbegin(), it->second.rend());
+    sides.emplace_back(begin, ring.size());  // up to the next corner
   }
   auto point = [&](int32_t id) {
     return id < first_new_id ? mesh.vertices[id]
@@ -103,9 +106,22 @@ Status SplitFace(
     }
     return OkStatus();
   }
-  // Several split sides: the face is a planar polygon; DOT triangulates it.
+  // Several split sides: the face is a planar polygon; DOT triangulates it,
+  // never joining two vertices of one side (they are collinear: such a
+  // chord would make a needle or fold).
   Problem p;
   for (int32_t id : ring) p.vertices.push_back(point(id));
+  const auto n = static_cast<int32_t>(ring.size());
+  for (const auto& [begin, end] : sides) {
+    for (size_t a = begin; a <= end; ++a) {
+      for (size_t b = a + 2; b <= end; ++b) {
+        const auto i = static_cast<int32_t>(a % n),
+                   j = static_cast<int32_t>(b % n);
+        if ((i + 1) % n != j && (j + 1) % n != i)
+          p.forbidden_edges.emplace_back(i, j);
+      }
+    }
+  }
   Options o;
   o.space = SearchSpace::kAll;
   const Result r = Triangulate(p, o);
@@ -152,11 +168,23 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
     r = Triangulate(problem, o, control);
     report->escalation = a.escalation;
     if (r.status.ok()) break;
-    if (r.status.code != StatusCode::kNoTriangulation) return r.status;
+    // Edge protection can also run out of room (more vertices than allowed,
+    // an edge too short to halve): the next step may still succeed.
+    const bool next_may_help =
+        r.status.code == StatusCode::kNoTriangulation ||
+        (a.protect_edges && (r.status.code == StatusCode::kResourceExhausted ||
+                             r.status.code == StatusCode::kInvalidArgument));
+    if (!next_may_help) return r.status;
     why += std::string(why.empty() ? "" : "; ") +
            std::string(EscalationName(a.escalation)) + ": " + r.status.message;
   }
-  if (!r.status.ok()) return MakeStatus(StatusCode::kNoTriangulation, why);
+  if (!r.status.ok()) {
+    if (r.status.code == StatusCode::kCancelled ||
+        r.status.code == StatusCode::kDeadlineExceeded) {
+      return r.status;
+    }
+    return MakeStatus(StatusCode::kNoTriangulation, why);
+  }
   report->space = r.space_used;
   report->solver = r.solver;
   report->cost = r.total_cost;

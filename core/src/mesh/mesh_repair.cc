@@ -4,7 +4,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
-#include <map>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
@@ -177,9 +176,16 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
     }
     report->vertex_map[i] = it->second;
   }
-  for (const auto& face : soup.faces) {
+  for (size_t i = 0; i < soup.faces.size(); ++i) {
+    const auto& face = soup.faces[i];
     std::vector<int32_t> f;
     for (int32_t v : face) {
+      if (v < 0 || static_cast<size_t>(v) >= soup.vertices.size()) {
+        return InvalidArgument("face " + std::to_string(i) +
+                               " has vertex index " + std::to_string(v) +
+                               ", outside 0.." +
+                               std::to_string(soup.vertices.size() - 1));
+      }
       const int32_t m = report->vertex_map[v];
       if (f.empty() || f.back() != m) f.push_back(m);
     }
@@ -199,19 +205,29 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
   if (!s.ok()) return s;
   out->vertices = std::move(tri.vertices);
   out->triangles.clear();
-  std::map<std::array<int32_t, 3>, bool> seen;
-  for (const Triangle& t : tri.triangles) {
+  // Duplicates by sorting (corner set, position): the first one is kept.
+  std::vector<std::pair<Triangle, int32_t>> keys;
+  keys.reserve(tri.triangles.size());
+  for (size_t f = 0; f < tri.triangles.size(); ++f) {
+    Triangle key = tri.triangles[f];
+    std::sort(key.begin(), key.end());
+    keys.emplace_back(key, static_cast<int32_t>(f));
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<bool> duplicate(tri.triangles.size(), false);
+  for (size_t k = 1; k < keys.size(); ++k) {
+    if (keys[k].first == keys[k - 1].first) duplicate[keys[k].second] = true;
+  }
+  keys = {};
+  for (size_t f = 0; f < tri.triangles.size(); ++f) {
+    const Triangle& t = tri.triangles[f];
     if (ZeroArea(out->vertices, t)) {
       ++report->degenerate_faces;
-      continue;
-    }
-    Triangle key = t;
-    std::sort(key.begin(), key.end());
-    if (!seen.emplace(key, true).second) {
+    } else if (duplicate[f]) {
       ++report->duplicate_faces;
-      continue;
+    } else {
+      out->triangles.push_back(t);
     }
-    out->triangles.push_back(t);
   }
   s = Orient(out->vertices, &out->triangles, report);
   if (!s.ok()) return s;

@@ -67,6 +67,35 @@ TEST(HoleLoopsTest, ABorderThroughAVertexTwiceIsSplitThere) {
   EXPECT_EQ(r.report.filled, 2);
 }
 
+// Two gaps that share two vertices: a 2x2 island held by two corner cells
+// that touch it at one vertex each. Each loop must follow its own gap (turn
+// around the shared vertex through its own fan), never cross to the other.
+TEST(HoleLoopsTest, TwoGapsThroughTheSameTwoVerticesStayApart) {
+  const int n = 10;
+  const MeshData grid = testing::FlatGrid(n);
+  const MeshData m = WithoutFaces(grid, [&](int32_t f) {
+    const int quad = f / 2, i = quad / n, j = quad % n;
+    const bool ring = i >= 3 && i < 7 && j >= 3 && j < 7;
+    const bool island = i >= 4 && i < 6 && j >= 4 && j < 6;
+    const bool holder = (i == 3 && j == 3) || (i == 6 && j == 6);
+    return ring && !island && !holder;
+  });
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(m, &loops).ok());
+  ASSERT_EQ(loops.size(), 3u);  // the rim and the two gaps
+  FillOptions o;
+  o.selection.skip_longest = true;
+  const FillResult r = FillHoles(m, o);
+  testing::ExpectFilledMesh(m, r, /*closed=*/false, "island");
+  EXPECT_EQ(r.report.filled, 2);
+  for (const HoleReport& h : r.report.holes) {
+    if (h.status != HoleStatus::kSkipped) {
+      EXPECT_TRUE(h.pinched);
+      EXPECT_EQ(h.boundary_vertices, 12);
+    }
+  }
+}
+
 TEST(HoleLoopsTest, OpenTerrainHasItsRimAndItsHoles) {
   const MeshData grid = testing::FlatGrid(10);
   const MeshData m = WithoutFaces(grid, Star(grid, 5 * 11 + 5));

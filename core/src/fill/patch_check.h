@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Intersection counts over a few faces of a large mesh, without copying the
+// mesh: only the vertices the faces use are gathered.
+#ifndef DOT_CORE_FILL_PATCH_CHECK_H_
+#define DOT_CORE_FILL_PATCH_CHECK_H_
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "dot/geometry.h"
+
+namespace dot {
+
+// Pairs of `faces` that intersect (exact predicates, as the validator)
+// with at least one of the pair among the first `checked`; `point` gives a
+// vertex id's position. Faces are taken by value: they are renumbered.
+int64_t CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
+                        std::vector<Triangle> faces, size_t checked);
+
+// Axis-aligned box of some points.
+struct Box3 {
+  Vec3 lo{1e308, 1e308, 1e308};
+  Vec3 hi{-1e308, -1e308, -1e308};
+  void Add(const Vec3& p);
+  bool Meets(const Box3& o) const;
+};
+
+}  // namespace dot
+
+#endif  // DOT_CORE_FILL_PATCH_CHECK_H_
