@@ -11,6 +11,8 @@ packages=(
   libcgal-demo   # real meshes (data.tar.gz) for the hole tests
   openssl curl gnuplot-nox
   python3-grpcio  # raw-wire service tests (/usr/bin/python3)
+  python3-protobuf python3-numpy python3-pytest  # dot_client and its tests
+  blender  # the Blender add-on's headless tests (3.4, on the system Python)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,664 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""The add-on's operators: mesh.dot_fill_loops, mesh.dot_fill_holes,
+mesh.dot_triangulate_curve.
+
+Each operator reads the geometry in `prepare` (main thread), does the
+remote work in a function that touches no Blender data (run in a worker
+thread when invoked from the UI, so the status bar shows progress and Esc
+cancels, or inline from scripts and the redo panel), and writes the result
+back in `finish` (main thread), as one undo step. Every failure becomes a
+Blender report.
+"""
+import sys
+import threading
+import traceback
+
+import bmesh
+import bpy
+import numpy as np
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
+
+from . import connection, geometry
+from .connection import dot_client
+
+METRICS = ("area", "perimeter", "normal_deviation", "shape", "dihedral",
+           "squared_dihedral")
+
+STAGES = [
+    ('TRIANGULATE', "Triangulate", "The optimal DOT patch only"),
+    ('REFINE', "Refine", "The patch refined (Liepa) to the density around it"),
+    ('FAIR', "Fair", "Refined and faired: the finished surface"),
+]
+SEARCH_SPACES = [
+    ('AUTO', "Auto", "Delaunay triangles; all triangles for small polygons "
+     "that have no Delaunay triangulation"),
+    ('DELAUNAY', "Delaunay", "Delaunay triangles only: never self-intersects"),
+    ('ALL', "All", "Every triangle: the unrestricted optimum (small loops)"),
+]
+
+
+def addon_prefs(context):
+    return context.preferences.addons[__package__].preferences
+
+
+def describe(error):
+    if isinstance(error, dot_client.NoTriangulation):
+        return f"DOT: {error} (try Protect Edges, or search space All)"
+    if isinstance(error, dot_client.DotError):
+        return f"DOT: {error.code.name}: {error.message}"
+    if isinstance(error, geometry.MeshChanged):
+        return f"DOT: {error}"
+    return f"DOT failed: {type(error).__name__}: {error}"
+
+
+# -- weights -------------------------------------------------------------
+
+
+def _weight(name, default=0.0):
+    return FloatProperty(
+        name=name.replace("_", " ").title(), default=default, soft_min=-10,
+        soft_max=10, description=f"Weight of the {name.replace('_', ' ')} "
+        "metric (a negative weight maximizes it)")
+
+
+class WeightProps:
+    area: _weight("area", 1.0)
+    perimeter: _weight("perimeter")
+    normal_deviation: _weight("normal_deviation")
+    shape: _weight("shape")
+    dihedral: _weight("dihedral")
+    squared_dihedral: _weight("squared_dihedral")
+
+    def custom_weights(self):
+        return {m: getattr(self, m) for m in METRICS}
+
+    def draw_weights(self, layout, enabled):
+        col = layout.column(align=True)
+        col.enabled = enabled
+        for m in METRICS:
+            col.prop(self, m)
+
+
+# Patch weights of Triangulate per preset; shape is a scale-free tie-break
+# where the main metric has ties (flat loops).
+TRIANGULATE_PRESETS = {
+    'MINIMAL_AREA': {"area": 1.0},
+    'SMOOTH': {"squared_dihedral": 1.0, "shape": 0.01},
+    'FOLLOW_NORMALS': {"normal_deviation": 1.0, "shape": 0.01},
+}
+# FillHoles weights per preset (None: the server's hole-filling default,
+# squared dihedral 1 and area 0.01 per hole scale).
+FILL_PRESETS = {
+    'DEFAULT': None,
+    'MINIMAL_AREA': {"area": 1.0},
+    'SMOOTH': None,
+    'FOLLOW_NORMALS': {"normal_deviation": 1.0, "area": 0.01},
+}
+
+
+# -- the job ---------------------------------------------------------------
+
+
+class Job:
+    """Remote work in a worker thread: progress, cancel, result or error."""
+
+    def __init__(self, work):
+        self.work = work
+        self.token = dot_client.CancelToken()
+        self.fraction = 0.0
+        self.text = "starting"
+        self.result = None
+        self.error = None
+        self.done = False
+
+    def progress(self, fraction, text):
+        self.fraction, self.text = fraction, text
+
+    def run(self, client):
+        try:
+            self.result = self.work(client, self.token, self.progress)
+        except BaseException as e:  # handed to the main thread
+            self.error = e
+        finally:
+            self.done = True
+
+    def start(self, client):
+        threading.Thread(target=self.run, args=(client,), daemon=True,
+                         name="dot-job").start()
+
+
+class DotOperator:
+    """Shared by the operators: execute runs inline, invoke in a worker
+    thread with a modal loop (progress in the status bar, Esc cancels)."""
+
+    def prepare(self, context):  # -> (work, state) or None
+        raise NotImplementedError
+
+    def finish(self, context, state, payload):  # -> {'FINISHED'} ...
+        raise NotImplementedError
+
+    def fail(self, error):
+        if not isinstance(error, (dot_client.DotError, geometry.MeshChanged)):
+            traceback.print_exception(type(error), error,
+                                      error.__traceback__, file=sys.stderr)
+        self.report({'ERROR'}, describe(error))
+        return {'CANCELLED'}
+
+    def execute(self, context):
+        try:
+            prepared = self.prepare(context)
+            if prepared is None:
+                return {'CANCELLED'}
+            work, state = prepared
+            client = connection.client(addon_prefs(context))
+            wm = context.window_manager
+            wm.progress_begin(0, 100)
+            try:
+                payload = work(client, None,
+                               lambda f, text: wm.progress_update(int(100 * f)))
+            finally:
+                wm.progress_end()
+            return self.finish(context, state, payload)
+        except Exception as e:
+            return self.fail(e)
+
+    def invoke(self, context, event):
+        if bpy.app.background or context.window is None:
+            return self.execute(context)
+        try:
+            prepared = self.prepare(context)
+            if prepared is None:
+                return {'CANCELLED'}
+            work, state = prepared
+            client = connection.client(addon_prefs(context))
+        except Exception as e:
+            return self.fail(e)
+        self._state = state
+        self._job = Job(work)
+        self._job.start(client)
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.1, window=context.window)
+        wm.modal_handler_add(self)
+        wm.progress_begin(0, 100)
+        self._status(context, "starting")
+        return {'RUNNING_MODAL'}
+
+    def _status(self, context, text):
+        if context.workspace is not None:
+            context.workspace.status_text_set(
+                f"DOT {self.bl_label}: {text}  (Esc to cancel)")
+
+    def _end_modal(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+
+    def modal(self, context, event):
+        job = self._job
+        if event.type == 'ESC' and event.value == 'PRESS':
+            job.token.cancel()
+            job.text = "cancelling"
+        if event.type != 'TIMER':
+            # The mesh must not change under the job: other input waits.
+            return {'RUNNING_MODAL'}
+        context.window_manager.progress_update(int(100 * job.fraction))
+        self._status(context, job.text)
+        if not job.done:
+            return {'RUNNING_MODAL'}
+        self._end_modal(context)
+        if job.error is not None:
+            if job.token.cancelled:
+                self.report({'WARNING'}, "DOT: cancelled")
+                return {'CANCELLED'}
+            return self.fail(job.error)
+        try:
+            return self.finish(context, self._state, job.result)
+        except Exception as e:
+            return self.fail(e)
+
+
+def _triangulate_work(loops, normals, kwargs):
+    def work(client, cancel, progress):
+        progress(0.0, f"0 of {len(loops)} loops")
+        return client.triangulate_many(
+            loops, normals, cancel=cancel,
+            progress=lambda done, total, _: progress(
+                done / total, f"{done} of {total} loops"), **kwargs)
+    return work
+
+
+def _fill_work(vertices, faces, kwargs):
+    def work(client, cancel, progress):
+        progress(0.0, "sending the mesh")
+        return client.fill_holes(
+            vertices, faces, cancel=cancel, no_repair=True,
+            progress=lambda p: progress(
+                p.holes_done / max(1, p.holes_total),
+                f"{p.holes_done} of {p.holes_total} holes"), **kwargs)
+    return work
+
+
+def _edit_bmesh(context):
+    obj = context.edit_object
+    return obj, bmesh.from_edit_mesh(obj.data)
+
+
+# -- mesh.dot_fill_loops ----------------------------------------------------
+
+
+class MESH_OT_dot_fill_loops(DotOperator, WeightProps, bpy.types.Operator):
+    """Fill each closed loop of selected boundary edges with its optimal
+    DOT patch (Delaunay-restricted optimal triangulation)"""
+    bl_idname = "mesh.dot_fill_loops"
+    bl_label = "Fill Loops (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    preset: EnumProperty(
+        name="Preset", default='SMOOTH', items=[
+            ('MINIMAL_AREA', "Minimal Area", "The patch of least area"),
+            ('SMOOTH', "Smooth", "Least squared dihedral angles between "
+             "the patch's triangles (fair patches)"),
+            ('FOLLOW_NORMALS', "Follow Surrounding Normals", "Triangles "
+             "facing like the surface's vertex normals around the loop"),
+            ('CUSTOM', "Custom", "The weights below"),
+        ])
+    stage: EnumProperty(name="Stage", items=STAGES, default='TRIANGULATE')
+    protect_edges: BoolProperty(
+        name="Protect Edges", default=False,
+        description="Split boundary edges that are not Delaunay so more loops "
+        "can be filled (the faces beside them get the new vertices)")
+    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
+                               default='AUTO')
+
+    @classmethod
+    def poll(cls, context):
+        return (context.mode == 'EDIT_MESH' and context.edit_object is not None
+                and context.edit_object.type == 'MESH')
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+        layout.prop(self, "stage")
+        col = layout.column()
+        col.enabled = self.stage == 'TRIANGULATE'
+        col.prop(self, "protect_edges")
+        col.prop(self, "search_space")
+
+    def _weights(self):
+        if self.preset == 'CUSTOM':
+            return self.custom_weights()
+        return dict(TRIANGULATE_PRESETS[self.preset])
+
+    def prepare(self, context):
+        obj, bm = _edit_bmesh(context)
+        bm.verts.index_update()
+        loops, skipped = geometry.selected_loops(bm)
+        if skipped:
+            self.report({'WARNING'}, f"DOT: {skipped} selected edge chains "
+                        "are not closed loops of boundary edges; skipped")
+        if not loops:
+            self.report({'ERROR'}, "DOT: select closed loops of boundary "
+                        "edges (the rims of holes) to fill")
+            return None
+        vertices = geometry.vertex_array(bm)
+        state = {"object": obj.name, "loops": loops,
+                 "counts": (len(bm.verts), len(bm.faces))}
+        if self.stage == 'TRIANGULATE':
+            normals = None
+            weights = self._weights()
+            if weights.get("normal_deviation"):
+                bm.normal_update()
+                bm.verts.ensure_lookup_table()
+                normals = [np.array([bm.verts[i].normal[:] for i in loop])
+                           for loop in loops]
+            kwargs = dict(weights, protect_edges=self.protect_edges,
+                          search_space=self.search_space.lower())
+            polygons = [vertices[loop] for loop in loops]
+            return _triangulate_work(polygons, normals, kwargs), state
+        wire = sum(1 for loop in loops if all(
+            not e.link_faces for e in _loop_edges(bm, loop)))
+        if wire:
+            self.report({'ERROR'}, "DOT: Refine and Fair need the loops to be "
+                        "rims of holes in a surface; use Triangulate for loops "
+                        "of loose edges")
+            return None
+        faces, owner = geometry.triangles(bm)
+        state["owner"] = owner
+        weights = (self.custom_weights() if self.preset == 'CUSTOM'
+                   else FILL_PRESETS[self.preset])
+        kwargs = dict(weights or {}, stage=self.stage.lower(),
+                      max_hole_edges=max(len(loop) for loop in loops))
+        return _fill_work(vertices, faces, kwargs), state
+
+    def finish(self, context, state, payload):
+        obj, bm = _edit_bmesh(context)
+        geometry.check_unchanged(bm, *state["counts"])
+        stats, filled, problems = {}, 0, []
+        if isinstance(payload, list) and all(r.error for r in payload):
+            problems = [f"loop {k + 1}: {describe(r.error)}"
+                        for k, r in enumerate(payload)]
+            return _report(self, 0, len(payload), problems, stats)
+        if not isinstance(payload, list) and payload.report.filled == 0:
+            problems = [f"hole {h.id}: {h.status} {h.reason}".strip()
+                        for h in payload.report.holes
+                        if h.status not in ("filled", "skipped")]
+            return _report(self, 0, len(state["loops"]), problems, stats)
+        for f in bm.faces:  # the new faces end up selected, alone
+            f.select_set(False)
+        if isinstance(payload, list):  # Triangulate results, one per loop
+            for k, (loop, result) in enumerate(zip(state["loops"], payload)):
+                if result.error is not None:
+                    problems.append(f"loop {k + 1}: {describe(result.error)}")
+                    continue
+                geometry.add_patch(bm, loop, result.vertices,
+                                   result.triangles, result.summary, stats)
+                filled += 1
+        else:
+            keep = {v for loop in state["loops"] for v in loop}
+            _, filled = geometry.add_fill(bm, payload, state["counts"][0],
+                                          state["owner"], keep)
+            asked = len(state["loops"])
+            if filled < asked:
+                problems.append(
+                    f"{asked - filled} of {asked} loops not filled: " + "; ".join(
+                        f"hole {h.id}: {h.status} {h.reason}".strip()
+                        for h in payload.report.holes
+                        if h.status not in ("filled", "skipped")))
+        bm.select_flush_mode()
+        bm.normal_update()
+        bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=True)
+        return _report(self, filled, len(state["loops"]), problems, stats)
+
+
+def _loop_edges(bm, loop):
+    bm.verts.ensure_lookup_table()
+    n = len(loop)
+    return [bm.edges.get((bm.verts[loop[i]], bm.verts[loop[(i + 1) % n]]))
+            for i in range(n)]
+
+
+def _report(op, filled, total, problems, stats):
+    for p in problems:
+        op.report({'WARNING'}, p)
+    if filled == 0:
+        op.report({'ERROR'}, "DOT: nothing was filled" +
+                  (f" ({problems[0]})" if problems else ""))
+        return {'CANCELLED'}
+    extra = ""
+    if stats.get("inserted"):
+        extra += f", {stats['inserted']} boundary vertices inserted"
+    if stats.get("duplicates"):
+        extra += f", {stats['duplicates']} faces existed already"
+    op.report({'INFO'}, f"DOT: {filled} of {total} filled{extra}")
+    return {'FINISHED'}
+
+
+# -- mesh.dot_fill_holes ----------------------------------------------------
+
+
+class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
+    """Fill every hole of the active mesh through the DOT server's
+    FillHoles: the optimal patch, refined and faired into the surface"""
+    bl_idname = "mesh.dot_fill_holes"
+    bl_label = "Fill Holes (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    stage: EnumProperty(name="Stage", items=STAGES, default='FAIR')
+    max_hole_edges: IntProperty(
+        name="Max Hole Edges", default=0, min=0,
+        description="Fill only holes with at most this many edges (0: any)")
+    max_hole_diameter: FloatProperty(
+        name="Max Hole Diameter", default=0.0, min=0.0, subtype='DISTANCE',
+        description="Fill only holes at most this wide, bounding-box "
+        "diagonal in the object's units (0: any)")
+    skip_longest: BoolProperty(
+        name="Skip Longest Border", default=False,
+        description="Leave the longest border open (a terrain's rim)")
+    preset: EnumProperty(
+        name="Weights", default='DEFAULT', items=[
+            ('DEFAULT', "Default", "Squared dihedral angles with a little "
+             "area, including the faces around the hole"),
+            ('MINIMAL_AREA', "Minimal Area", "The patch of least area"),
+            ('FOLLOW_NORMALS', "Follow Surrounding Normals",
+             "Triangles facing like the surface around the hole"),
+            ('CUSTOM', "Custom", "The weights below (per hole scale)"),
+        ])
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and obj.type == 'MESH' and context.mode in (
+            'OBJECT', 'EDIT_MESH')
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "stage")
+        layout.prop(self, "max_hole_edges")
+        layout.prop(self, "max_hole_diameter")
+        layout.prop(self, "skip_longest")
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+
+    def _bmesh(self, context):
+        obj = context.active_object
+        if obj.mode == 'EDIT':
+            return obj, bmesh.from_edit_mesh(obj.data), True
+        bm = bmesh.new()
+        bm.from_mesh(obj.data)
+        return obj, bm, False
+
+    def prepare(self, context):
+        obj, bm, edit = self._bmesh(context)
+        try:
+            if not any(e.is_boundary for e in bm.edges):
+                self.report({'INFO'}, "DOT: the mesh has no holes")
+                return None
+            vertices = geometry.vertex_array(bm)
+            faces, owner = geometry.triangles(bm)
+            state = {"owner": owner, "counts": (len(bm.verts), len(bm.faces))}
+        finally:
+            if not edit:
+                bm.free()
+        weights = (self.custom_weights() if self.preset == 'CUSTOM'
+                   else FILL_PRESETS[self.preset])
+        kwargs = dict(weights or {}, stage=self.stage.lower(),
+                      max_hole_edges=self.max_hole_edges,
+                      max_hole_diameter=self.max_hole_diameter,
+                      skip_longest=self.skip_longest)
+        return _fill_work(vertices, faces, kwargs), state
+
+    def finish(self, context, state, result):
+        obj, bm, edit = self._bmesh(context)
+        try:
+            geometry.check_unchanged(bm, *state["counts"])
+            if edit:
+                for f in bm.faces:
+                    f.select_set(False)
+            _, patches = geometry.add_fill(bm, result, state["counts"][0],
+                                           state["owner"])
+            bm.normal_update()
+            if edit:
+                bm.select_flush_mode()
+                bmesh.update_edit_mesh(obj.data, loop_triangles=True,
+                                       destructive=True)
+            else:
+                bm.to_mesh(obj.data)
+                obj.data.update()
+        finally:
+            if not edit:
+                bm.free()
+        r = result.report
+        problems = [f"hole {h.id} ({h.boundary_vertices} edges): {h.status}"
+                    + (f": {h.reason}" if h.reason else "")
+                    for h in r.holes if h.status not in ("filled", "skipped")]
+        for p in problems:
+            self.report({'WARNING'}, f"DOT: {p}")
+        self.report({'INFO'}, f"DOT: {r.filled} of {r.loops} holes filled"
+                    f" ({r.skipped} skipped), +{r.added_vertices} vertices, "
+                    f"+{r.added_faces} faces"
+                    + (", closed" if r.closed else ""))
+        return {'FINISHED'}
+
+
+# -- mesh.dot_triangulate_curve ---------------------------------------------
+
+
+def _curve_loops(obj):
+    """Closed splines of a curve object, or closed loops of a polyline mesh
+    object, as (n, 3) arrays in the object's space; and how many open
+    chains were skipped."""
+    loops, skipped = [], 0
+    if obj.type == 'CURVE':
+        for spline in obj.data.splines:
+            if not spline.use_cyclic_u:
+                skipped += 1
+                continue
+            if spline.type == 'BEZIER':
+                pts = _bezier_points(spline, max(1, spline.resolution_u))
+            else:
+                pts = [p.co.xyz[:] for p in spline.points]
+            pts = _drop_repeats(np.array(pts, dtype=np.float64).reshape(-1, 3))
+            if len(pts) >= 3:
+                loops.append(pts)
+            else:
+                skipped += 1
+    else:
+        bm = bmesh.new()
+        bm.from_mesh(obj.data)
+        try:
+            bm.verts.index_update()
+            ids, skipped = geometry.closed_loops_of_edges(bm)
+            vertices = geometry.vertex_array(bm)
+            loops = [vertices[i] for i in ids]
+        finally:
+            bm.free()
+    return loops, skipped
+
+
+def _bezier_points(spline, resolution):
+    from mathutils.geometry import interpolate_bezier
+    pts = []
+    bp = spline.bezier_points
+    for i in range(len(bp)):
+        a, b = bp[i], bp[(i + 1) % len(bp)]
+        seg = interpolate_bezier(a.co, a.handle_right, b.handle_left, b.co,
+                                 resolution + 1)
+        pts += [p[:] for p in seg[:-1]]
+    return pts
+
+
+def _drop_repeats(pts):
+    if len(pts) == 0:
+        return pts
+    keep = np.ones(len(pts), dtype=bool)
+    keep[1:] = np.any(pts[1:] != pts[:-1], axis=1)
+    if len(pts) > 1 and np.all(pts[-1] == pts[0]):
+        keep[-1] = False
+    return pts[keep]
+
+
+class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
+                                    bpy.types.Operator):
+    """Turn the selected closed curve or polyline into a triangulated
+    surface (lofting, sketch-based surfacing)"""
+    bl_idname = "mesh.dot_triangulate_curve"
+    bl_label = "Triangulate Curve (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    preset: EnumProperty(
+        name="Preset", default='SMOOTH', items=[
+            ('MINIMAL_AREA', "Minimal Area", "The surface of least area"),
+            ('SMOOTH', "Smooth", "Least squared dihedral angles (a fair "
+             "surface)"),
+            ('CUSTOM', "Custom", "The weights below"),
+        ])
+    protect_edges: BoolProperty(
+        name="Protect Edges", default=False,
+        description="Split curve segments that are not Delaunay so more "
+        "curves can be triangulated")
+    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
+                               default='AUTO')
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return (context.mode == 'OBJECT' and obj is not None
+                and obj.type in ('CURVE', 'MESH'))
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+        layout.prop(self, "protect_edges")
+        layout.prop(self, "search_space")
+
+    def prepare(self, context):
+        obj = context.active_object
+        if obj.type == 'MESH' and len(obj.data.polygons):
+            self.report({'ERROR'}, "DOT: the mesh has faces; select a curve "
+                        "or a polyline (edges only), or use Fill Loops")
+            return None
+        loops, skipped = _curve_loops(obj)
+        if skipped:
+            self.report({'WARNING'}, f"DOT: {skipped} open curves skipped "
+                        "(only closed ones bound a surface)")
+        if not loops:
+            self.report({'ERROR'}, f"DOT: {obj.name} has no closed curve "
+                        "(make it cyclic: Curve > Toggle Cyclic)")
+            return None
+        weights = (self.custom_weights() if self.preset == 'CUSTOM'
+                   else dict(TRIANGULATE_PRESETS[self.preset]))
+        if weights.get("normal_deviation"):
+            self.report({'ERROR'}, "DOT: curves have no normals: set the "
+                        "normal deviation weight to 0")
+            return None
+        kwargs = dict(weights, protect_edges=self.protect_edges,
+                      search_space=self.search_space.lower())
+        return _triangulate_work(loops, None, kwargs), {"object": obj.name}
+
+    def finish(self, context, state, results):
+        source = bpy.data.objects[state["object"]]
+        bm = bmesh.new()
+        problems, filled = [], 0
+        try:
+            index = {}
+            for k, r in enumerate(results):
+                if r.error is not None:
+                    problems.append(f"curve {k + 1}: {describe(r.error)}")
+                    continue
+                verts = []
+                for p in r.vertices:  # loops sharing points share vertices
+                    key = tuple(p)
+                    if key not in index:
+                        index[key] = bm.verts.new(p)
+                    verts.append(index[key])
+                for t in r.triangles:
+                    try:
+                        bm.faces.new([verts[int(i)] for i in t])
+                    except ValueError:
+                        pass  # the same face from two loops
+                filled += 1
+            if filled == 0:
+                return _report(self, 0, len(results), problems, {})
+            bm.normal_update()
+            mesh = bpy.data.meshes.new(f"{source.name} DOT surface")
+            bm.to_mesh(mesh)
+        finally:
+            bm.free()
+        obj = bpy.data.objects.new(mesh.name, mesh)
+        obj.matrix_world = source.matrix_world.copy()
+        collections = source.users_collection or [context.scene.collection]
+        for c in collections:
+            c.objects.link(obj)
+        for o in context.selected_objects:
+            o.select_set(False)
+        obj.select_set(True)
+        context.view_layer.objects.active = obj
+        return _report(self, filled, len(results), problems, {})
+
+
+classes = (MESH_OT_dot_fill_loops, MESH_OT_dot_fill_holes,
+           MESH_OT_dot_triangulate_curve)

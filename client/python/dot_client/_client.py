@@ -1,0 +1,574 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""dot_client.Client: the dot.v1 service from Python, numpy in and out."""
+from __future__ import annotations
+
+import json
+import threading
+from typing import (Any, Callable, Dict, Iterator, List, Optional, Sequence,
+                    Union)
+
+import grpc
+import numpy as np
+
+from . import _validate as check
+from . import wire
+from ._errors import DotError, InvalidInput, NoTriangulation, from_rpc_error
+from ._proto.dot.v1 import triangulation_pb2 as pb
+from ._proto.dot.v1 import triangulation_pb2_grpc as pb_grpc
+from ._proto.grpc.health.v1 import health_pb2, health_pb2_grpc
+from ._types import (METRICS, FillProgress, FillResult, Progress, Result,
+                     ServerInfo)
+
+ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of tuples, ...
+
+_SEARCH_SPACES = {"auto": pb.SEARCH_SPACE_AUTO,
+                  "delaunay": pb.SEARCH_SPACE_DELAUNAY,
+                  "all": pb.SEARCH_SPACE_ALL}
+_BACKENDS = {"default": pb.DELAUNAY_BACKEND_DEFAULT,
+             "cgal": pb.DELAUNAY_BACKEND_CGAL,
+             "tetgen": pb.DELAUNAY_BACKEND_TETGEN}
+_FILL_STAGES = {"triangulate": pb.FILL_STAGE_TRIANGULATE,
+                "refine": pb.FILL_STAGE_REFINE,
+                "fair": pb.FILL_STAGE_FAIR}
+
+# Retry UNAVAILABLE (a replica draining or gone: the call did nothing), as
+# dotctl does. The load-balancing policy stays gRPC's default, pick_first:
+# one connection to one replica keeps its search-space cache useful for
+# interactive re-solves (README: "The cache and replicas").
+_SERVICE_CONFIG = json.dumps({
+    "methodConfig": [{
+        "name": [{"service": "dot.v1.Triangulator"},
+                 {"service": "grpc.health.v1.Health"}],
+        "retryPolicy": {
+            "maxAttempts": 5,
+            "initialBackoff": "0.05s",
+            "maxBackoff": "1s",
+            "backoffMultiplier": 2,
+            "retryableStatusCodes": ["UNAVAILABLE"],
+        },
+    }],
+})
+
+_MESSAGE_BYTES = 64 << 20
+
+
+class _Default:
+    def __repr__(self) -> str:
+        return "<client default>"
+
+
+_DEFAULT: Any = _Default()
+
+
+class CancelToken:
+    """Cancels the calls it is passed to, from any thread.
+
+    ``token = CancelToken(); client.fill_holes(v, f, cancel=token)`` in one
+    thread, ``token.cancel()`` in another (an Esc key handler): the call
+    raises :class:`DotError` with code ``CANCELLED`` and the server stops
+    working on it. A token cancelled before a call starts cancels it at
+    once.
+    """
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._calls: List[Any] = []
+        self._cancelled = False
+
+    @property
+    def cancelled(self) -> bool:
+        return self._cancelled
+
+    def cancel(self) -> None:
+        with self._lock:
+            self._cancelled = True
+            calls = list(self._calls)
+        for c in calls:
+            c.cancel()
+
+    def _attach(self, call: Any) -> None:
+        with self._lock:
+            self._calls.append(call)
+            cancelled = self._cancelled
+        if cancelled:
+            call.cancel()
+
+    def _detach(self, call: Any) -> None:
+        with self._lock:
+            if call in self._calls:
+                self._calls.remove(call)
+
+
+def _read(path: Optional[str], what: str) -> Optional[bytes]:
+    if path is None:
+        return None
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError as e:
+        raise InvalidInput(f"cannot read {what} {path!r}: {e.strerror}") from None
+
+
+class Client:
+    """A connection to a dot-server.
+
+    ``address`` is ``host:port`` (any gRPC target, e.g.
+    ``dns:///dot-headless:50051``). TLS is on when any of ``tls_ca`` (PEM
+    CA bundle that signed the server's certificate; None: the system's
+    roots), ``tls_cert`` and ``tls_key`` (a client certificate and its key,
+    for mutual TLS) is given. ``timeout`` is the default deadline of each
+    call in seconds (None: no deadline); every method takes its own
+    ``timeout`` too. Use as a context manager, or call :meth:`close`::
+
+        with dot_client.Client("localhost:50051") as client:
+            result = client.triangulate(points, squared_dihedral=1)
+
+    Every failure raises :class:`DotError` (``code``, ``message``);
+    input that cannot be sent raises its subclass :class:`InvalidInput`
+    before any call is made.
+    """
+
+    def __init__(self, address: str = "localhost:50051", *,
+                 tls_ca: Optional[str] = None, tls_cert: Optional[str] = None,
+                 tls_key: Optional[str] = None,
+                 timeout: Optional[float] = None) -> None:
+        if not isinstance(address, str) or not address:
+            raise InvalidInput(f"address must be 'host:port'; got {address!r}")
+        if (tls_cert is None) != (tls_key is None):
+            raise InvalidInput("tls_cert and tls_key go together (mutual TLS)")
+        self.address = address
+        self.timeout = check.timeout("timeout", timeout)
+        options = [("grpc.max_receive_message_length", _MESSAGE_BYTES),
+                   ("grpc.max_send_message_length", _MESSAGE_BYTES),
+                   ("grpc.enable_retries", 1),
+                   ("grpc.service_config", _SERVICE_CONFIG)]
+        if tls_ca is None and tls_cert is None:
+            self._channel = grpc.insecure_channel(address, options=options)
+        else:
+            credentials = grpc.ssl_channel_credentials(
+                root_certificates=_read(tls_ca, "tls_ca"),
+                private_key=_read(tls_key, "tls_key"),
+                certificate_chain=_read(tls_cert, "tls_cert"))
+            self._channel = grpc.secure_channel(address, credentials,
+                                                options=options)
+        self._closed = False
+        self._stub = pb_grpc.TriangulatorStub(self._channel)
+        self._health = health_pb2_grpc.HealthStub(self._channel)
+
+    # -- lifetime -----------------------------------------------------------
+
+    def close(self) -> None:
+        """Closes the channel; calls in flight are cancelled. Calls made
+        afterwards raise DotError (``FAILED_PRECONDITION``)."""
+        self._closed = True
+        self._channel.close()
+
+    def _check_open(self) -> None:
+        if self._closed:
+            raise DotError(grpc.StatusCode.FAILED_PRECONDITION,
+                           "this Client is closed")
+
+    def __enter__(self) -> "Client":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        return f"dot_client.Client({self.address!r})"
+
+    # -- helpers ------------------------------------------------------------
+
+    def _deadline(self, timeout: Any) -> Optional[float]:
+        self._check_open()
+        if timeout is _DEFAULT:
+            return self.timeout
+        return check.timeout("timeout", timeout)
+
+    @staticmethod
+    def _run(call: Any, cancel: Optional[CancelToken],
+             consume: Callable[[Any], Any]) -> Any:
+        """consume(call) with RPC errors as DotError; any other way out
+        (an error, KeyboardInterrupt) cancels the call first."""
+        if cancel is not None:
+            cancel._attach(call)
+        try:
+            return consume(call)
+        except grpc.RpcError as e:
+            raise from_rpc_error(e) from None
+        except BaseException:
+            call.cancel()
+            raise
+        finally:
+            if cancel is not None:
+                cancel._detach(call)
+
+    @staticmethod
+    def _weights(message: Any, values: Dict[str, Any]) -> None:
+        for m in METRICS:
+            setattr(message, m, check.number(m, values[m]))
+
+    def _request(self, request_id: str, points: ArrayLike,
+                 normals: Optional[ArrayLike], weights: Dict[str, Any],
+                 options: Dict[str, Any], what: str = "points"
+                 ) -> "tuple[Any, np.ndarray]":
+        p = check.points(what, points, min_rows=3)
+        r = pb.TriangulateRequest(id=request_id)
+        r.polygon.coordinates.extend(p.reshape(-1).tolist())
+        if normals is not None:
+            name = "normals" if what == "points" else what.replace(
+                "polygons", "normals")
+            n = check.points(name, normals)
+            if n.shape != p.shape:
+                raise InvalidInput(
+                    f"{name} has {len(n)} rows; expected one per vertex "
+                    f"({len(p)})")
+            r.polygon.normals.extend(n.reshape(-1).tolist())
+        self._weights(r.weights, weights)
+        o = r.options
+        o.search_space = _SEARCH_SPACES[check.choice(
+            "search_space", options["search_space"], list(_SEARCH_SPACES))]
+        o.delaunay_backend = _BACKENDS[check.choice(
+            "delaunay_backend", options["delaunay_backend"], list(_BACKENDS))]
+        o.protect_edges = check.flag("protect_edges", options["protect_edges"])
+        o.validate_output = check.flag("validate_output",
+                                       options["validate_output"])
+        o.no_cache = check.flag("no_cache", options["no_cache"])
+        o.time_budget_ms = check.integer("time_budget_ms",
+                                         options["time_budget_ms"])
+        o.memory_budget_bytes = check.integer(
+            "memory_budget_bytes", options["memory_budget_bytes"],
+            maximum=check.UINT64_MAX)
+        o.progress_interval_ms = check.integer(
+            "progress_interval_ms", options.get("progress_interval_ms", 0))
+        # The server leaves the input vertices out; they are put back from
+        # `p` on arrival (as dotctl does).
+        o.omit_input_vertices = True
+        return r, p
+
+    # -- Triangulate --------------------------------------------------------
+
+    def triangulate(self, points: ArrayLike,
+                    normals: Optional[ArrayLike] = None, *,
+                    area: float = 0, perimeter: float = 0,
+                    normal_deviation: float = 0, shape: float = 0,
+                    dihedral: float = 0, squared_dihedral: float = 0,
+                    search_space: str = "auto", protect_edges: bool = False,
+                    delaunay_backend: str = "default",
+                    validate_output: bool = False, time_budget_ms: int = 0,
+                    memory_budget_bytes: int = 0, no_cache: bool = False,
+                    progress: Optional[Callable[[Progress], None]] = None,
+                    progress_interval_ms: int = 100,
+                    raise_no_triangulation: bool = True,
+                    request_id: str = "",
+                    timeout: Optional[float] = _DEFAULT,
+                    cancel: Optional[CancelToken] = None) -> Result:
+        """The optimal triangulation of one closed polygon.
+
+        ``points``: (n, 3) vertices of the loop 0, 1, ..., n-1, 0 (n >= 3).
+        ``normals``: optional (n, 3) boundary normals for the
+        ``normal_deviation`` metric, pointing to the side around which the
+        polygon runs counter-clockwise.
+
+        Weights (the objective is their weighted sum; all zero means area;
+        a negative weight maximizes): ``area``, ``perimeter``,
+        ``normal_deviation``, ``shape``, ``dihedral``, ``squared_dihedral``.
+
+        ``search_space``: ``"auto"`` (Delaunay triangles, all triangles for
+        small polygons without a Delaunay triangulation), ``"delaunay"``
+        (never self-intersects) or ``"all"``. ``protect_edges`` splits
+        polygon edges that are not Delaunay (the inserted vertices follow
+        the input's in ``result.vertices``; ``summary.loop`` is the polygon
+        with them in place). ``delaunay_backend``: ``"default"``,
+        ``"cgal"`` or ``"tetgen"``. ``validate_output`` counts
+        self-intersecting pairs. ``time_budget_ms`` and
+        ``memory_budget_bytes`` lower the server's limits (0: the
+        server's). ``no_cache`` skips the server's search-space cache.
+
+        ``progress`` is called with a :class:`Progress` at most every
+        ``progress_interval_ms``; an exception it raises (also
+        KeyboardInterrupt) cancels the call and propagates.
+
+        Returns a :class:`Result`. When no triangulation exists, raises
+        :class:`NoTriangulation` (its ``summary`` says why), or with
+        ``raise_no_triangulation=False`` returns a Result whose
+        ``summary.status`` is ``"no_triangulation"`` and whose arrays are
+        empty. Other failures raise :class:`DotError`.
+        """
+        weights = dict(area=area, perimeter=perimeter,
+                       normal_deviation=normal_deviation, shape=shape,
+                       dihedral=dihedral, squared_dihedral=squared_dihedral)
+        options = dict(search_space=search_space,
+                       delaunay_backend=delaunay_backend,
+                       protect_edges=protect_edges,
+                       validate_output=validate_output,
+                       time_budget_ms=time_budget_ms,
+                       memory_budget_bytes=memory_budget_bytes,
+                       no_cache=no_cache,
+                       progress_interval_ms=(
+                           check.integer("progress_interval_ms",
+                                         progress_interval_ms, minimum=1)
+                           if progress is not None else 0))
+        request, p = self._request(str(request_id), points, normals, weights,
+                                   options)
+        deadline = self._deadline(timeout)
+        call = self._stub.Triangulate(request, timeout=deadline)
+        result: Result = self._run(
+            call, cancel,
+            lambda c: wire.assemble_triangulate(c, p, on_progress=progress))
+        if (raise_no_triangulation and result.summary is not None
+                and result.summary.status != "ok"):
+            raise NoTriangulation(result.summary)
+        return result
+
+    def triangulate_many(self, polygons: Sequence[ArrayLike],
+                         normals: Optional[Sequence[Optional[ArrayLike]]] = None,
+                         *, area: float = 0, perimeter: float = 0,
+                         normal_deviation: float = 0, shape: float = 0,
+                         dihedral: float = 0, squared_dihedral: float = 0,
+                         search_space: str = "auto",
+                         protect_edges: bool = False,
+                         delaunay_backend: str = "default",
+                         validate_output: bool = False,
+                         time_budget_ms: int = 0,
+                         memory_budget_bytes: int = 0, no_cache: bool = False,
+                         progress: Optional[Callable[[int, int, Result],
+                                                     None]] = None,
+                         timeout: Optional[float] = _DEFAULT,
+                         cancel: Optional[CancelToken] = None) -> List[Result]:
+        """Many polygons over one TriangulateBatch stream.
+
+        Takes the options of :meth:`triangulate`, applied to every polygon;
+        ``normals`` is None or one entry (an (n, 3) array or None) per
+        polygon. The server works on them concurrently; results come back
+        in input order, one :class:`Result` per polygon. A polygon that
+        fails alone (bad input the server refused, no triangulation) does
+        not fail the call: its Result has ``ok`` False and ``error`` set to
+        a :class:`DotError` (a :class:`NoTriangulation` for the latter).
+        ``progress(done, total, result)`` is called as each result arrives
+        (in arrival order). ``timeout`` bounds the whole stream. A failure
+        of the stream itself raises :class:`DotError`.
+        """
+        if isinstance(polygons, np.ndarray) and polygons.ndim == 2:
+            raise InvalidInput("polygons must be a list of (n, 3) arrays; "
+                               "for one polygon call triangulate()")
+        if not isinstance(polygons, (Sequence, np.ndarray)):
+            raise InvalidInput("polygons must be a list of (n, 3) arrays")
+        if normals is not None and len(normals) != len(polygons):
+            raise InvalidInput(
+                f"normals has {len(normals)} entries; expected one (or None) "
+                f"per polygon ({len(polygons)})")
+        weights = dict(area=area, perimeter=perimeter,
+                       normal_deviation=normal_deviation, shape=shape,
+                       dihedral=dihedral, squared_dihedral=squared_dihedral)
+        options = dict(search_space=search_space,
+                       delaunay_backend=delaunay_backend,
+                       protect_edges=protect_edges,
+                       validate_output=validate_output,
+                       time_budget_ms=time_budget_ms,
+                       memory_budget_bytes=memory_budget_bytes,
+                       no_cache=no_cache)
+        requests = []
+        inputs = []
+        for i, polygon in enumerate(polygons):
+            r, p = self._request(
+                str(i), polygon, None if normals is None else normals[i],
+                weights, options, what=f"polygons[{i}]")
+            requests.append(r)
+            inputs.append(p)
+        total = len(requests)
+        if total == 0:
+            return []
+        deadline = self._deadline(timeout)
+        call = self._stub.TriangulateBatch(iter(requests), timeout=deadline)
+
+        def consume(responses: Iterator[Any]) -> List[Result]:
+            assemblers: Dict[int, wire.MeshAssembler] = {}
+            failed: Dict[int, str] = {}
+            results: List[Optional[Result]] = [None] * total
+            done = 0
+            for message in responses:
+                try:
+                    i = int(message.id)
+                except ValueError:
+                    continue
+                if not 0 <= i < total or results[i] is not None:
+                    continue
+                kind = message.WhichOneof("payload")
+                if kind == "mesh":
+                    if i not in failed:
+                        try:
+                            assemblers.setdefault(
+                                i, wire.MeshAssembler()).add(message.mesh)
+                        except wire.AssemblyError as e:
+                            failed[i] = str(e)
+                    continue
+                empty = Result(vertices=np.zeros((0, 3)),
+                               triangles=np.zeros((0, 3), np.int32),
+                               id=message.id)
+                if kind == "error":
+                    code = _status_code(message.error.code)
+                    empty.error = DotError(code, message.error.message)
+                    result = empty
+                elif kind == "summary":
+                    try:
+                        result = wire._finish_triangulate(
+                            message.id, message.summary,
+                            assemblers.pop(i, wire.MeshAssembler()),
+                            failed.pop(i, None), inputs[i])
+                    except DotError as e:
+                        empty.error = e
+                        result = empty
+                    if result.error is None and result.summary is not None \
+                            and result.summary.status != "ok":
+                        result.error = NoTriangulation(result.summary, str(i))
+                else:
+                    continue  # progress
+                results[i] = result
+                done += 1
+                if progress is not None:
+                    progress(done, total, result)
+            for i, r in enumerate(results):
+                if r is None:
+                    results[i] = Result(
+                        vertices=np.zeros((0, 3)),
+                        triangles=np.zeros((0, 3), np.int32), id=str(i),
+                        error=DotError(grpc.StatusCode.DATA_LOSS,
+                                       "the stream ended without an answer "
+                                       "for this polygon"))
+            return results  # type: ignore[return-value]
+
+        return self._run(call, cancel, consume)
+
+    # -- FillHoles ----------------------------------------------------------
+
+    def fill_holes(self, vertices: ArrayLike,
+                   faces: Union[ArrayLike, Sequence[Sequence[int]]], *,
+                   stage: str = "fair", max_hole_edges: int = 0,
+                   max_hole_diameter: float = 0, skip_longest: bool = False,
+                   holes: Optional[Sequence[int]] = None,
+                   area: Optional[float] = None,
+                   perimeter: Optional[float] = None,
+                   normal_deviation: Optional[float] = None,
+                   shape: Optional[float] = None,
+                   dihedral: Optional[float] = None,
+                   squared_dihedral: Optional[float] = None,
+                   absolute_weights: bool = False, density: float = 0,
+                   fairing_continuity: Optional[int] = None,
+                   no_repair: bool = False, time_budget_ms: int = 0,
+                   memory_budget_bytes: int = 0,
+                   progress: Optional[Callable[[FillProgress], None]] = None,
+                   request_id: str = "",
+                   timeout: Optional[float] = _DEFAULT,
+                   cancel: Optional[CancelToken] = None) -> FillResult:
+        """Fills the holes of a mesh (the FillHoles stream).
+
+        ``vertices``: (V, 3) floats; ``faces``: (F, 3) vertex indices, or
+        (F, k) polygons, or a list of polygons of any sizes (the server
+        triangulates them). The mesh streams to the server in messages of
+        about 1 MiB, so any size up to the server's limits fits.
+
+        ``stage``: ``"triangulate"`` (the DOT patch), ``"refine"`` (+ Liepa
+        refinement) or ``"fair"`` (+ fairing: the finished surface).
+        Which holes: ``max_hole_edges`` (0: any), ``max_hole_diameter``
+        (bounding-box diagonal, 0: any), ``skip_longest`` (leave the
+        longest border open), ``holes`` (only these loop ids, as numbered
+        in the report). Weights: leave all None for the hole-filling
+        default (squared dihedral 1, area 0.01, per hole scale), or give
+        some (the others count 0); ``absolute_weights`` keeps area and
+        perimeter in the mesh's units. ``density`` (refinement, 0:
+        sqrt(2)), ``fairing_continuity`` (0, 1 or 2; None: 1),
+        ``no_repair`` (use the mesh exactly as sent: then the output's
+        first V vertices and, except faces listed in a hole's
+        ``split_faces``, its first faces are the input's).
+
+        ``progress(FillProgress)`` is called as holes are done; an
+        exception it raises cancels the call and propagates.
+
+        Returns a :class:`FillResult` (vertices, faces, report); holes that
+        stay open are reported in ``report.holes``, not raised.
+        """
+        v = check.points("vertices", vertices)
+        f = check.faces(faces, len(v))
+        options = pb.FillOptions()
+        options.stage = _FILL_STAGES[check.choice("stage", stage,
+                                                  list(_FILL_STAGES))]
+        options.max_hole_edges = check.integer("max_hole_edges", max_hole_edges)
+        options.max_hole_diameter = check.number(
+            "max_hole_diameter", max_hole_diameter, minimum=0)
+        options.skip_longest = check.flag("skip_longest", skip_longest)
+        if holes is not None:
+            if isinstance(holes, (str, bytes)) or not isinstance(
+                    holes, (Sequence, np.ndarray)):
+                raise InvalidInput("holes must be a list of hole ids")
+            options.holes.extend(
+                check.integer(f"holes[{i}]", h, minimum=-2**31,
+                              maximum=2**31 - 1) for i, h in enumerate(holes))
+        given = dict(area=area, perimeter=perimeter,
+                     normal_deviation=normal_deviation, shape=shape,
+                     dihedral=dihedral, squared_dihedral=squared_dihedral)
+        if any(w is not None for w in given.values()):
+            values = {m: (0.0 if w is None else w) for m, w in given.items()}
+            self._weights(options.weights, values)
+            if all(getattr(options.weights, m) == 0 for m in METRICS):
+                raise InvalidInput(
+                    "every metric weight is zero; leave them all None for "
+                    "the default")
+        options.absolute_weights = check.flag("absolute_weights",
+                                              absolute_weights)
+        d = check.number("density", density)
+        if d != 0 and not 0.1 <= d <= 100:
+            raise InvalidInput(
+                f"density must be between 0.1 and 100 (0: sqrt(2)); got {d}")
+        options.density = d
+        if fairing_continuity is not None:
+            options.fairing_continuity = check.integer(
+                "fairing_continuity", fairing_continuity, 0, 2)
+        options.no_repair = check.flag("no_repair", no_repair)
+        options.time_budget_ms = check.integer("time_budget_ms",
+                                               time_budget_ms)
+        options.memory_budget_bytes = check.integer(
+            "memory_budget_bytes", memory_budget_bytes,
+            maximum=check.UINT64_MAX)
+        deadline = self._deadline(timeout)
+        requests = wire.fill_requests(str(request_id), options, v, f)
+        call = self._stub.FillHoles(requests, timeout=deadline)
+        return self._run(
+            call, cancel,
+            lambda c: wire.assemble_fill(c, on_progress=progress))
+
+    # -- Health and info ----------------------------------------------------
+
+    def health(self, service: str = "", *,
+               timeout: Optional[float] = _DEFAULT) -> str:
+        """grpc.health.v1 Check: ``"SERVING"``, ``"NOT_SERVING"`` (e.g.
+        draining), ``"SERVICE_UNKNOWN"`` or ``"UNKNOWN"``; raises
+        :class:`DotError` (``UNAVAILABLE``) when the server cannot be
+        reached. ``service`` "" asks about the server as a whole,
+        ``"dot.v1.Triangulator"`` about the service."""
+        deadline = self._deadline(timeout)
+        try:
+            r = self._health.Check(
+                health_pb2.HealthCheckRequest(service=service),
+                timeout=deadline)
+        except grpc.RpcError as e:
+            raise from_rpc_error(e) from None
+        return health_pb2.HealthCheckResponse.ServingStatus.Name(r.status)
+
+    def server_info(self, *, timeout: Optional[float] = _DEFAULT) -> ServerInfo:
+        """The server's version, build, backends, limits, license and where
+        its source is (GetServerInfo)."""
+        deadline = self._deadline(timeout)
+        try:
+            r = self._stub.GetServerInfo(pb.GetServerInfoRequest(),
+                                         timeout=deadline)
+        except grpc.RpcError as e:
+            raise from_rpc_error(e) from None
+        return ServerInfo.from_proto(r)
+
+
+def _status_code(value: int) -> grpc.StatusCode:
+    for c in grpc.StatusCode:
+        if c.value[0] == value:
+            return c
+    return grpc.StatusCode.UNKNOWN

@@ -1,0 +1,140 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""Input checks made before any call, each naming what is wrong."""
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any, List, Optional, Sequence, Union
+
+import numpy as np
+
+from ._errors import InvalidInput
+
+UINT32_MAX = 2**32 - 1
+UINT64_MAX = 2**64 - 1
+
+
+def points(name: str, value: Any, min_rows: int = 0) -> np.ndarray:
+    """A finite float64 array of shape (n, 3) with n >= min_rows."""
+    if value is None:
+        raise InvalidInput(f"{name} is missing")
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InvalidInput(f"{name} must be numbers of shape (n, 3): {e}") from None
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise InvalidInput(
+            f"{name} must have shape (n, 3) (one x, y, z row per vertex); "
+            f"got shape {a.shape}")
+    if len(a) < min_rows:
+        raise InvalidInput(
+            f"{name} has {len(a)} vertices; at least {min_rows} are needed")
+    finite = np.isfinite(a).all(axis=1)
+    if not finite.all():
+        i = int(np.argmin(finite))
+        raise InvalidInput(
+            f"{name}[{i}] = ({a[i, 0]}, {a[i, 1]}, {a[i, 2]}) is not finite")
+    return np.ascontiguousarray(a)
+
+
+def number(name: str, value: Any, minimum: Optional[float] = None) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise InvalidInput(f"{name} must be a number; got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise InvalidInput(f"{name} must be finite; got {v}")
+    if minimum is not None and v < minimum:
+        raise InvalidInput(f"{name} must be >= {minimum}; got {v}")
+    return v
+
+
+def integer(name: str, value: Any, minimum: int = 0,
+            maximum: int = UINT32_MAX) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InvalidInput(f"{name} must be an integer; got {value!r}")
+    v = int(value)
+    if v < minimum or v > maximum:
+        raise InvalidInput(
+            f"{name} must be between {minimum} and {maximum}; got {v}")
+    return v
+
+
+def flag(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise InvalidInput(f"{name} must be True or False; got {value!r}")
+    return bool(value)
+
+
+def choice(name: str, value: Any, choices: Sequence[str]) -> str:
+    if not isinstance(value, str) or value.lower() not in choices:
+        raise InvalidInput(
+            f"{name} must be one of {', '.join(choices)}; got {value!r}")
+    return value.lower()
+
+
+def timeout(name: str, value: Any) -> Optional[float]:
+    if value is None:
+        return None
+    v = number(name, value)
+    if v <= 0:
+        raise InvalidInput(f"{name} must be > 0 seconds (or None); got {v}")
+    return v
+
+
+def faces(value: Any, vertex_count: int) -> Union[np.ndarray, List[np.ndarray]]:
+    """Faces as an int64 array (F, k), k >= 3, or a list of int64 arrays
+    (polygons of mixed sizes), every index in [0, vertex_count)."""
+    if value is None:
+        raise InvalidInput("faces is missing")
+    if isinstance(value, np.ndarray) or (
+            isinstance(value, Sequence) and value and
+            len({len(f) if isinstance(f, (Sequence, np.ndarray)) else -1
+                 for f in value}) == 1):
+        a = np.asarray(value)
+        if a.dtype == object:
+            raise InvalidInput("faces must be integer vertex indices")
+        if a.size and not np.issubdtype(a.dtype, np.integer):
+            if np.issubdtype(a.dtype, np.floating) and np.all(np.mod(a, 1) == 0):
+                a = a.astype(np.int64)
+            else:
+                raise InvalidInput(
+                    f"faces must be integer vertex indices; got dtype {a.dtype}")
+        if a.ndim != 2 or a.shape[1] < 3:
+            raise InvalidInput(
+                f"faces must have shape (F, 3) (or (F, k), k >= 3); got "
+                f"shape {a.shape}")
+        if len(a) == 0:
+            raise InvalidInput("the mesh has no faces")
+        a = a.astype(np.int64)
+        bad = (a < 0) | (a >= vertex_count)
+        if bad.any():
+            f = int(np.argmax(bad.any(axis=1)))
+            v = int(a[f][bad[f]][0])
+            raise InvalidInput(
+                f"face {f} has vertex index {v}, but there are only "
+                f"{vertex_count} vertices")
+        return a
+    if not isinstance(value, Sequence):
+        raise InvalidInput(
+            f"faces must be an (F, 3) array or a list of polygons; got "
+            f"{type(value).__name__}")
+    if len(value) == 0:
+        raise InvalidInput("the mesh has no faces")
+    out: List[np.ndarray] = []
+    for i, f in enumerate(value):
+        try:
+            a = np.asarray(f)
+        except (TypeError, ValueError):
+            a = np.asarray([None])
+        if a.ndim != 1 or not np.issubdtype(a.dtype, np.integer):
+            raise InvalidInput(f"face {i} must be a list of vertex indices")
+        if len(a) < 3:
+            raise InvalidInput(
+                f"face {i} has {len(a)} corners; a face needs at least 3")
+        bad = (a < 0) | (a >= vertex_count)
+        if bad.any():
+            raise InvalidInput(
+                f"face {i} has vertex index {int(a[bad][0])}, but there are "
+                f"only {vertex_count} vertices")
+        out.append(a.astype(np.int64))
+    return out

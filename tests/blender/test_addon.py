@@ -1,0 +1,529 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""The `dot` Blender add-on, headless, against a real dot-server on
+loopback.
+
+    blender -b --factory-startup --python-exit-code 1 \\
+        --python tests/blender/test_addon.py -- \\
+        --server build/server/dot-server \\
+        --addon-zip build/client/blender/dot_blender_addon.zip
+
+Installs the add-on from the zip the build made (into BLENDER_USER_SCRIPTS
+when set: ctest points it into the build tree), starts dot-server on a free
+127.0.0.1 port, builds meshes with holes, selected boundary loops and
+curves, runs each operator and checks the geometry with bmesh: closed where
+filled, edge-manifold, faces wound like their neighbours, no duplicate
+vertices, no intersecting faces. Any failure raises, so Blender exits 1.
+"""
+import argparse
+import math
+import os
+import socket
+import subprocess
+import sys
+import time
+import traceback
+
+import addon_utils
+import bmesh
+import bpy
+from mathutils.bvhtree import BVHTree
+from mathutils.kdtree import KDTree
+
+argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+ap = argparse.ArgumentParser()
+ap.add_argument("--server", required=True)
+ap.add_argument("--addon-zip", required=True)
+ARGS = ap.parse_args(argv)
+
+
+# -- harness -----------------------------------------------------------------
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_server():
+    address = f"127.0.0.1:{free_port()}"
+    process = subprocess.Popen(
+        [ARGS.server, "--listen", address, "--metrics-port", "0",
+         "--log-level", "error", "--drain-seconds", "1", "--threads", "2"],
+        stdout=subprocess.DEVNULL)
+    deadline = time.monotonic() + 30
+    while True:  # until the port accepts (at most 30 s)
+        try:
+            with socket.create_connection(("127.0.0.1", int(address.split(":")[1])),
+                                          timeout=1):
+                return process, address
+        except OSError:
+            if process.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError("dot-server did not start")
+            time.sleep(0.05)
+
+
+def prefs():
+    return bpy.context.preferences.addons["dot"].preferences
+
+
+def clear_scene():
+    if bpy.context.object and bpy.context.object.mode != 'OBJECT':
+        bpy.ops.object.mode_set(mode='OBJECT')
+    for o in list(bpy.data.objects):
+        bpy.data.objects.remove(o)
+    for m in list(bpy.data.meshes):
+        bpy.data.meshes.remove(m)
+    for c in list(bpy.data.curves):
+        bpy.data.curves.remove(c)
+
+
+def activate(obj):
+    for o in bpy.context.view_layer.objects:
+        o.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+
+
+def object_bmesh(obj):
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    return bm
+
+
+def check_mesh(obj, boundary_edges=0):
+    """Edge-manifold, consistently wound, no duplicate vertices, no
+    degenerate or intersecting faces; `boundary_edges` left open."""
+    bm = object_bmesh(obj)
+    try:
+        boundary = sum(1 for e in bm.edges if e.is_boundary)
+        assert boundary == boundary_edges, \
+            f"{boundary} boundary edges, expected {boundary_edges}"
+        assert not [e for e in bm.edges if len(e.link_faces) > 2], \
+            "an edge of more than two faces"
+        assert not [e for e in bm.edges if not e.link_faces], "a loose edge"
+        flipped = [e for e in bm.edges
+                   if len(e.link_faces) == 2 and not e.is_contiguous]
+        assert not flipped, f"{len(flipped)} edges between faces wound apart"
+        kd = KDTree(len(bm.verts))
+        for v in bm.verts:
+            kd.insert(v.co, v.index)
+        kd.balance()
+        dup = [v.index for v in bm.verts if len(kd.find_range(v.co, 1e-9)) > 1]
+        assert not dup, f"duplicate vertices {dup[:5]}"
+        assert min(f.calc_area() for f in bm.faces) > 1e-12, "a degenerate face"
+        tree = BVHTree.FromBMesh(bm)
+        overlaps = tree.overlap(tree)
+        assert not overlaps, f"intersecting faces {overlaps[:5]}"
+        return len(bm.verts), len(bm.faces)
+    finally:
+        bm.free()
+
+
+def counts(obj):
+    bm = object_bmesh(obj)
+    try:
+        return (len(bm.verts), len(bm.faces),
+                sum(1 for e in bm.edges if e.is_boundary))
+    finally:
+        bm.free()
+
+
+def delete_faces(obj, where):
+    bm = object_bmesh(obj)
+    doomed = [f for f in bm.faces if where(f.calc_center_median())]
+    bmesh.ops.delete(bm, geom=doomed, context='FACES')
+    bm.to_mesh(obj.data)
+    bm.free()
+    return len(doomed)
+
+
+def select_boundary_edges(obj, where):
+    """Edit Mode: exactly the boundary edges whose midpoint satisfies
+    `where` selected."""
+    bm = bmesh.from_edit_mesh(obj.data)
+    for f in bm.faces:
+        f.select_set(False)
+    for e in bm.edges:
+        e.select_set(False)
+    for v in bm.verts:
+        v.select_set(False)
+    bm.select_mode = {'EDGE'}
+    for e in bm.edges:
+        if e.is_boundary and where((e.verts[0].co + e.verts[1].co) / 2):
+            e.select_set(True)
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data)
+
+
+def expect_report(call, *words):
+    """The operator must fail with a Blender report (RuntimeError from
+    bpy.ops), never a Python traceback."""
+    try:
+        call()
+    except RuntimeError as e:
+        text = str(e)
+        assert "Traceback" not in text, text
+        for w in words:
+            assert w in text, f"{w!r} not in {text!r}"
+        return text
+    raise AssertionError(f"no error report; expected {words}")
+
+
+def mesh_object(name, vertices, edges=(), faces=()):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([tuple(v) for v in vertices], list(edges), list(faces))
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    activate(obj)
+    return obj
+
+
+def protected_polygon():
+    """10 random vertices (the Python tests' polygon): DOT splits 4 of its
+    edges when asked to protect them."""
+    import numpy as np
+    rng = np.random.default_rng(1)
+    return np.round(rng.uniform(-1, 1, (10, 3)), 2)
+
+
+# -- tests ---------------------------------------------------------------
+
+def test_operators_are_registered_with_one_undo_step():
+    for idname in ("dot_fill_loops", "dot_fill_holes", "dot_triangulate_curve"):
+        cls = getattr(bpy.types, "MESH_OT_" + idname)
+        assert {'REGISTER', 'UNDO'} <= set(cls.bl_options), idname
+        assert hasattr(bpy.ops.mesh, idname)
+    import dot
+    assert "vendor" in dot.connection.dot_client.__name__, \
+        "the add-on must use its vendored dot_client"
+
+
+def test_fill_holes_object_mode():
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12)
+    sphere = bpy.context.active_object
+    removed = delete_faces(sphere, lambda c: c.z > 0.85)  # around the pole
+    removed += delete_faces(sphere, lambda c: c.x > 0.75 and abs(c.z) < 0.3)
+    v0, f0, b0 = counts(sphere)
+    assert removed > 0 and b0 > 0
+    assert bpy.ops.mesh.dot_fill_holes() == {'FINISHED'}
+    v1, f1 = check_mesh(sphere, boundary_edges=0)
+    assert v1 > v0, "the fair stage adds vertices"
+    assert f1 > f0
+
+
+def test_fill_holes_edit_mode_options():
+    clear_scene()
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=20, y_subdivisions=20,
+                                    size=2)
+    grid = bpy.context.active_object
+    delete_faces(grid, lambda c: abs(c.x) < 0.3 and abs(c.y) < 0.3)
+    v0, f0, b0 = counts(grid)
+    bpy.ops.object.mode_set(mode='EDIT')
+    # Too small a limit: nothing to fill, nothing changed.
+    assert bpy.ops.mesh.dot_fill_holes(max_hole_edges=4, skip_longest=True) \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    assert counts(grid) == (v0, f0, b0)
+    bpy.ops.object.mode_set(mode='EDIT')
+    assert bpy.ops.mesh.dot_fill_holes(stage='TRIANGULATE', skip_longest=True,
+                                       preset='MINIMAL_AREA') == {'FINISHED'}
+    bm = bmesh.from_edit_mesh(grid.data)
+    selected = sum(1 for f in bm.faces if f.select)
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v1, f1 = check_mesh(grid, boundary_edges=4 * 20)  # the rim stays open
+    assert v1 == v0, "the triangulate stage adds no vertex"
+    assert selected == f1 - f0 > 0, "the new faces are selected"
+
+
+def test_fill_loops_presets_and_stages():
+    clear_scene()
+    bpy.ops.mesh.primitive_cylinder_add(vertices=24, end_fill_type='NOTHING')
+    cyl = bpy.context.active_object
+    v0, f0, b0 = counts(cyl)
+    assert b0 == 48
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(cyl, lambda c: c.z > 0)
+    assert bpy.ops.mesh.dot_fill_loops(preset='MINIMAL_AREA') == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v1, f1 = check_mesh(cyl, boundary_edges=24)
+    assert (v1, f1) == (v0, f0 + 22)
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(cyl, lambda c: c.z < 0)
+    assert bpy.ops.mesh.dot_fill_loops(preset='SMOOTH', stage='FAIR') \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v2, f2 = check_mesh(cyl, boundary_edges=0)
+    assert v2 >= v1 and f2 > f1
+
+
+def test_fill_loops_follow_normals_and_custom_weights():
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.5)
+    delete_faces(sphere, lambda c: c.z < -0.5)
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(sphere, lambda c: c.z > 0)
+    assert bpy.ops.mesh.dot_fill_loops(preset='FOLLOW_NORMALS') == {'FINISHED'}
+    select_boundary_edges(sphere, lambda c: c.z < 0)
+    assert bpy.ops.mesh.dot_fill_loops(
+        preset='CUSTOM', area=1, squared_dihedral=0.5, search_space='DELAUNAY') \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    check_mesh(sphere, boundary_edges=0)
+
+
+def test_fill_loops_protect_edges_splits_the_neighbours():
+    clear_scene()
+    p = protected_polygon()
+    n = len(p)
+    apex = (0.0, 0.0, 6.0)
+    # A fan from a far apex: its open rim is the polygon.
+    cone = mesh_object("cone", list(map(tuple, p)) + [apex],
+                       faces=[(n, (i + 1) % n, i) for i in range(n)])
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(cone, lambda c: True)
+    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(
+        preset='MINIMAL_AREA', search_space='DELAUNAY'), "no triangulation")
+    assert bpy.ops.mesh.dot_fill_loops(
+        preset='MINIMAL_AREA', search_space='DELAUNAY', protect_edges=True) \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    bm = object_bmesh(cone)
+    try:
+        assert len(bm.verts) == n + 1 + 4, len(bm.verts)
+        assert not [e for e in bm.edges if e.is_boundary or e.is_wire]
+        assert not [e for e in bm.edges if len(e.link_faces) != 2]
+        assert all(e.is_contiguous for e in bm.edges)
+        # Fan faces beside the split edges took the inserted vertices (DOT
+        # split two edges: one once, one three times).
+        assert sum(len(f.verts) - 3 for f in bm.faces) == 4
+        assert sorted(len(f.verts) for f in bm.faces)[-2:] == [4, 6]
+    finally:
+        bm.free()
+    # A loop of loose edges (no faces) fills too.
+    wire = mesh_object("wire", list(map(tuple, p)),
+                       edges=[(i, (i + 1) % n) for i in range(n)])
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    assert bpy.ops.mesh.dot_fill_loops(
+        preset='SMOOTH', search_space='DELAUNAY', protect_edges=True) \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v, f = check_mesh(wire, boundary_edges=n + 4)
+    assert (v, f) == (n + 4, n + 4 - 2)
+
+
+def test_fill_loops_needs_a_loop():
+    clear_scene()
+    bpy.ops.mesh.primitive_cylinder_add(vertices=12, end_fill_type='NOTHING')
+    cyl = bpy.context.active_object
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(cyl, lambda c: False)
+    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(), "select closed loops")
+    # Half a loop is no loop.
+    select_boundary_edges(cyl, lambda c: c.z > 0 and c.x > 0)
+    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(), "select closed loops")
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+
+def saddle(n):
+    return [(math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n),
+             0.5 * math.cos(6 * math.pi * i / n)) for i in range(n)]
+
+
+def check_disk(obj, inserted=0):
+    v, f = check_mesh(obj, boundary_edges=counts(obj)[0])
+    assert f == v - 2, (v, f)
+
+
+def test_triangulate_curve_bezier_poly_and_polyline():
+    clear_scene()
+    bpy.ops.curve.primitive_bezier_circle_add(radius=1)
+    curve = bpy.context.active_object
+    curve.location = (1, 2, 3)
+    for i, bp in enumerate(curve.data.splines[0].bezier_points):
+        dz = 0.4 * (-1) ** i
+        bp.co.z += dz
+        bp.handle_left.z += dz
+        bp.handle_right.z += dz
+    assert bpy.ops.mesh.dot_triangulate_curve() == {'FINISHED'}
+    surface = bpy.context.active_object
+    assert surface is not curve and surface.type == 'MESH'
+    assert "DOT surface" in surface.name
+    assert surface.matrix_world == curve.matrix_world
+    check_disk(surface)
+    assert counts(surface)[0] == 4 * curve.data.splines[0].resolution_u
+
+    # A cyclic POLY spline.
+    data = bpy.data.curves.new("poly", 'CURVE')
+    data.dimensions = '3D'
+    spline = data.splines.new('POLY')
+    pts = saddle(40)
+    spline.points.add(len(pts) - 1)
+    for p, co in zip(spline.points, pts):
+        p.co = (*co, 1)
+    spline.use_cyclic_u = True
+    poly = bpy.data.objects.new("poly", data)
+    bpy.context.scene.collection.objects.link(poly)
+    activate(poly)
+    assert bpy.ops.mesh.dot_triangulate_curve(preset='MINIMAL_AREA') \
+        == {'FINISHED'}
+    check_disk(bpy.context.active_object)
+    assert counts(bpy.context.active_object)[0] == 40
+
+    # Open: refused, as a report.
+    spline.use_cyclic_u = False
+    activate(poly)
+    expect_report(lambda: bpy.ops.mesh.dot_triangulate_curve(),
+                  "no closed curve")
+
+    # A polyline mesh (edges only), two loops: two patches in one object.
+    a, b = saddle(30), [(x + 3, y, z) for x, y, z in saddle(20)]
+    mesh_object("polyline", a + b, edges=[
+        (i, (i + 1) % 30) for i in range(30)] + [
+        (30 + i, 30 + (i + 1) % 20) for i in range(20)])
+    assert bpy.ops.mesh.dot_triangulate_curve(preset='CUSTOM', area=1,
+                                              squared_dihedral=1) \
+        == {'FINISHED'}
+    v, f = check_mesh(bpy.context.active_object, boundary_edges=50)
+    assert (v, f) == (50, 46)
+
+
+def test_no_triangulation_is_a_report():
+    clear_scene()
+    n = 90
+    knot = [(math.sin(t) + 2 * math.sin(2 * t), math.cos(t) - 2 * math.cos(2 * t),
+             -math.sin(3 * t)) for t in (2 * math.pi * i / n for i in range(n))]
+    mesh_object("knot", knot, edges=[(i, (i + 1) % n) for i in range(n)])
+    expect_report(lambda: bpy.ops.mesh.dot_triangulate_curve(),
+                  "no triangulation", "not Delaunay-triangulable")
+    assert len([o for o in bpy.data.objects if o.type == 'MESH']) == 1
+
+
+def test_server_errors_are_reports(address):
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add()
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.8)
+    before = counts(sphere)
+    prefs().server_address = f"127.0.0.1:{free_port()}"
+    try:
+        expect_report(lambda: bpy.ops.mesh.dot_fill_holes(), "UNAVAILABLE")
+    finally:
+        prefs().server_address = address
+    prefs().server_address = ""
+    prefs().run_locally = False
+    try:
+        expect_report(lambda: bpy.ops.mesh.dot_fill_holes(),
+                      "no DOT server is set")
+    finally:
+        prefs().run_locally = True
+        prefs().server_address = address
+    # A mesh the server refuses: an edge of three faces.
+    mesh_object("fin", [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0, -1, 0),
+                        (2, 2, 2), (3, 2, 2), (2, 3, 2)],
+                faces=[(0, 1, 2), (0, 1, 3), (0, 1, 4), (5, 6, 7)])
+    expect_report(lambda: bpy.ops.mesh.dot_fill_holes(), "INVALID_ARGUMENT",
+                  "shared by 3 faces")
+    assert counts(sphere) == before
+
+
+def test_run_locally_starts_and_stops_a_server(address):
+    import dot
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add()
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.8)
+    prefs().server_address = ""
+    prefs().run_locally = True
+    prefs().server_executable = "no-such-dot-server"
+    try:
+        expect_report(lambda: bpy.ops.mesh.dot_fill_holes(), "not on PATH")
+        prefs().server_executable = os.path.abspath(ARGS.server)
+        assert bpy.ops.mesh.dot_fill_holes(stage='TRIANGULATE') == {'FINISHED'}
+        check_mesh(sphere)
+        assert dot.connection.local_server_running()
+        process = dot.connection._local["process"]
+    finally:
+        prefs().server_address = address
+    addon_utils.disable("dot")
+    assert process.poll() is not None, "unregister stops the local server"
+    addon_utils.enable("dot", default_set=True)
+    assert prefs().server_address == address
+
+
+def test_background_job_and_cancel(address):
+    """The worker-thread path of invoke/modal: progress, result, Esc."""
+    import dot
+    from dot import operators
+    client = dot.connection.client(prefs())
+    # The paper's Twist curve, n = 1501: a DOT2 of about a second.
+    n, twist, k = 1501, [], 0
+    point = lambda i: (i / n, (i / n) ** 2, (i / n) ** 3)  # noqa: E731
+    while 2 * k + 1 <= n:
+        twist.append(point(2 * k + 1))
+        if n - 1 - 2 * k >= 2:
+            twist.append(point(n - 1 - 2 * k))
+        k += 1
+    job = operators.Job(operators._triangulate_work(
+        [saddle(50), saddle(60)], None, {"squared_dihedral": 1.0}))
+    job.start(client)
+    for _ in range(600):
+        if job.done:
+            break
+        time.sleep(0.05)
+    assert job.done and job.error is None, job.error
+    assert [r.ok for r in job.result] == [True, True]
+    assert job.fraction == 1.0
+    slow = operators.Job(operators._triangulate_work(
+        [twist], None, {"squared_dihedral": 1.0, "no_cache": True}))
+    slow.start(client)
+    time.sleep(0.2)
+    slow.token.cancel()  # what Esc does
+    for _ in range(200):
+        if slow.done:
+            break
+        time.sleep(0.05)
+    assert slow.done
+    assert slow.error is not None and slow.error.code.name == "CANCELLED", \
+        slow.error
+
+
+def main():
+    # Install the zip the build made and enable it, as a user would.
+    assert os.path.exists(ARGS.addon_zip), ARGS.addon_zip
+    bpy.ops.preferences.addon_install(overwrite=True, filepath=ARGS.addon_zip)
+    module = addon_utils.enable("dot", default_set=True)
+    assert module is not None, "the add-on did not enable"
+    print(f"add-on from {module.__file__}")
+    server, address = start_server()
+    failures = []
+    try:
+        prefs().server_address = address
+        tests = [(name, fn) for name, fn in globals().items()
+                 if name.startswith("test_") and callable(fn)]
+        for name, fn in tests:
+            t0 = time.monotonic()
+            try:
+                if fn.__code__.co_argcount:
+                    fn(address)
+                else:
+                    fn()
+                print(f"PASS {name} ({time.monotonic() - t0:.1f} s)")
+            except Exception:
+                failures.append(name)
+                print(f"FAIL {name}")
+                traceback.print_exc()
+    finally:
+        addon_utils.disable("dot")
+        server.terminate()
+        server.wait(timeout=30)
+    print(f"{len(tests) - len(failures)} of {len(tests)} passed")
+    if failures:
+        raise RuntimeError(f"failed: {', '.join(failures)}")
+
+
+main()

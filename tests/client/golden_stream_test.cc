@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The recorded response streams of tests/golden/ (scripts/record_golden.py)
+// reassembled by the C++ client's code (wire::MeshAssembler, as dotctl's
+// TriangulateRemote and FillRemote use it) must give the meshes stored
+// beside them, which dotctl --local computed without any wire. The Python
+// client replays the same files (tests/python/test_golden.py), so the two
+// clients cannot drift apart.
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dot/dot.h"
+#include "dot/v1/triangulation.pb.h"
+#include "wire/wire.h"
+
+#ifndef DOT_GOLDEN_DIR
+#error "DOT_GOLDEN_DIR must name tests/golden"
+#endif
+
+namespace dot {
+namespace {
+
+using google::protobuf::ListValue;
+using google::protobuf::Struct;
+using google::protobuf::Value;
+
+std::string ReadAll(const std::string& name) {
+  std::ifstream in(std::string(DOT_GOLDEN_DIR) + "/" + name, std::ios::binary);
+  EXPECT_TRUE(in) << "cannot open tests/golden/" << name;
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// 4-byte little-endian length, then the serialized message; again.
+template <typename Message>
+std::vector<Message> ReadStream(const std::string& name) {
+  const std::string data = ReadAll(name);
+  std::vector<Message> out;
+  size_t at = 0;
+  while (at < data.size()) {
+    EXPECT_LE(at + 4, data.size()) << "truncated length prefix";
+    if (at + 4 > data.size()) break;
+    const auto* b = reinterpret_cast<const unsigned char*>(data.data() + at);
+    const uint32_t size = b[0] | b[1] << 8 | b[2] << 16 |
+                          static_cast<uint32_t>(b[3]) << 24;
+    at += 4;
+    EXPECT_LE(at + size, data.size()) << "truncated message";
+    if (at + size > data.size()) break;
+    Message m;
+    EXPECT_TRUE(m.ParseFromArray(data.data() + at, static_cast<int>(size)));
+    out.push_back(std::move(m));
+    at += size;
+  }
+  return out;
+}
+
+Struct ReadJson(const std::string& name) {
+  Struct s;
+  const auto status =
+      google::protobuf::util::JsonStringToMessage(ReadAll(name), &s);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+  return s;
+}
+
+const Value& Field(const Struct& s, const std::string& key) {
+  auto it = s.fields().find(key);
+  EXPECT_NE(it, s.fields().end()) << "no field " << key;
+  static const Value kNull;
+  return it == s.fields().end() ? kNull : it->second;
+}
+
+std::vector<Vec3> Points(const Value& v) {
+  std::vector<Vec3> out;
+  for (const Value& row : v.list_value().values()) {
+    const ListValue& p = row.list_value();
+    out.push_back({p.values(0).number_value(), p.values(1).number_value(),
+                   p.values(2).number_value()});
+  }
+  return out;
+}
+
+std::vector<Triangle> Triangles(const Value& v) {
+  std::vector<Triangle> out;
+  for (const Value& row : v.list_value().values()) {
+    const ListValue& t = row.list_value();
+    out.push_back({static_cast<int32_t>(t.values(0).number_value()),
+                   static_cast<int32_t>(t.values(1).number_value()),
+                   static_cast<int32_t>(t.values(2).number_value())});
+  }
+  return out;
+}
+
+// Exact: every coordinate bit for bit.
+void ExpectSameMesh(const MeshData& got, const std::vector<Vec3>& vertices,
+                    const std::vector<Triangle>& triangles) {
+  ASSERT_EQ(got.vertices.size(), vertices.size());
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&got.vertices[i], &vertices[i], sizeof(Vec3)), 0)
+        << "vertex " << i;
+  }
+  EXPECT_EQ(got.triangles, triangles);
+}
+
+TEST(GoldenStreamTest, TriangulateStreamReassemblesToTheLocalResult) {
+  const auto messages = ReadStream<v1::TriangulateResponse>(
+      "triangulate.stream");
+  const Struct doc = ReadJson("triangulate.json");
+  const Struct& request = Field(doc, "request").struct_value();
+  const Struct& expected = Field(doc, "expected").struct_value();
+  ASSERT_TRUE(Field(Field(request, "options").struct_value(),
+                    "omit_input_vertices").bool_value());
+  const std::vector<Vec3> input = Points(Field(request, "points"));
+
+  // TriangulateRemote's loop, over the recorded messages.
+  wire::MeshAssembler assembler;
+  v1::Summary summary;
+  bool have_summary = false;
+  int chunks = 0;
+  for (const auto& m : messages) {
+    EXPECT_EQ(m.id(), "golden");
+    if (m.has_mesh()) {
+      ASSERT_TRUE(assembler.Add(m.mesh()).ok());
+      ++chunks;
+    }
+    if (m.has_summary()) {
+      summary = m.summary();
+      have_summary = true;
+    }
+  }
+  ASSERT_TRUE(have_summary);
+  EXPECT_GE(chunks, 3);  // recorded with 1 KiB chunks
+  EXPECT_EQ(summary.status(), v1::RESULT_STATUS_OK);
+  EXPECT_EQ(summary.inserted_count(),
+            Field(expected, "inserted_count").number_value());
+  // The server left the input out: the first chunk starts after it.
+  for (const auto& m : messages) {
+    if (!m.has_mesh()) continue;
+    EXPECT_EQ(m.mesh().first_vertex(), input.size());
+    break;
+  }
+  MeshData mesh;
+  const Status s = assembler.Finish(summary, input, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message;
+  ExpectSameMesh(mesh, Points(Field(expected, "vertices")),
+                 Triangles(Field(expected, "triangles")));
+}
+
+TEST(GoldenStreamTest, FillHolesStreamReassemblesToTheLocalResult) {
+  const auto messages = ReadStream<v1::FillHolesResponse>("fill_holes.stream");
+  const Struct doc = ReadJson("fill_holes.json");
+  const Struct& expected = Field(doc, "expected").struct_value();
+  ASSERT_FALSE(messages.empty());
+  ASSERT_TRUE(messages.back().has_report());  // last, as the proto says
+
+  // FillRemote's loop, over the recorded messages.
+  wire::MeshAssembler assembler;
+  v1::FillReport report;
+  int progress = 0, vertex_chunks = 0, triangle_chunks = 0;
+  for (const auto& m : messages) {
+    switch (m.payload_case()) {
+      case v1::FillHolesResponse::kProgress:
+        ++progress;
+        break;
+      case v1::FillHolesResponse::kMesh:
+        ASSERT_TRUE(assembler.Add(m.mesh()).ok());
+        vertex_chunks += m.mesh().vertices_size() > 0;
+        triangle_chunks += m.mesh().triangles_size() > 0;
+        break;
+      case v1::FillHolesResponse::kReport:
+        report = m.report();
+        break;
+      default:
+        break;
+    }
+  }
+  EXPECT_GE(progress, 1);
+  EXPECT_GE(vertex_chunks, 2);  // recorded with 1 KiB chunks
+  EXPECT_GE(triangle_chunks, 2);
+  EXPECT_EQ(report.filled(), Field(expected, "filled").number_value());
+  EXPECT_EQ(report.added_vertices(),
+            Field(expected, "added_vertices").number_value());
+  EXPECT_TRUE(report.closed());
+  MeshData mesh;
+  const Status s = assembler.Finish(
+      report.input_vertices() + report.added_vertices(),
+      report.input_faces() + report.added_faces(), {}, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message;
+  ExpectSameMesh(mesh, Points(Field(expected, "vertices")),
+                 Triangles(Field(expected, "faces")));
+}
+
+// The checks that make a bad stream fail, on the recorded one cut short or
+// shuffled (the Python tests make the same cuts and expect the same words).
+TEST(GoldenStreamTest, DamagedStreamsAreRefused) {
+  const auto messages = ReadStream<v1::TriangulateResponse>(
+      "triangulate.stream");
+  const Struct doc = ReadJson("triangulate.json");
+  const std::vector<Vec3> input =
+      Points(Field(Field(doc, "request").struct_value(), "points"));
+  const v1::Summary& summary = messages.back().summary();
+  std::vector<v1::MeshChunk> chunks;  // inserted vertices, then triangles
+  for (const auto& m : messages) {
+    if (m.has_mesh()) chunks.push_back(m.mesh());
+  }
+  ASSERT_GE(chunks.size(), 3u);
+  ASSERT_GT(chunks.front().vertices_size(), 0);
+  ASSERT_GT(chunks.back().triangles_size(), 0);
+  {  // the last chunk lost
+    wire::MeshAssembler a;
+    for (size_t i = 0; i + 1 < chunks.size(); ++i) {
+      ASSERT_TRUE(a.Add(chunks[i]).ok());
+    }
+    MeshData mesh;
+    const Status s = a.Finish(summary, input, &mesh);
+    EXPECT_NE(s.message.find("incomplete mesh"), std::string::npos)
+        << s.message;
+  }
+  {  // the input unknown to the client
+    wire::MeshAssembler a;
+    for (const auto& c : chunks) ASSERT_TRUE(a.Add(c).ok());
+    MeshData mesh;
+    const Status s = a.Finish(summary, {}, &mesh);
+    EXPECT_NE(s.message.find("input vertices are known"), std::string::npos)
+        << s.message;
+  }
+  {  // a vertex chunk twice
+    wire::MeshAssembler a;
+    ASSERT_TRUE(a.Add(chunks[0]).ok());
+    const Status s = a.Add(chunks[0]);
+    EXPECT_NE(s.message.find("out of order"), std::string::npos) << s.message;
+  }
+  {  // triangle chunks swapped
+    wire::MeshAssembler a;
+    ASSERT_TRUE(a.Add(chunks[0]).ok());
+    const Status s = a.Add(chunks.back());
+    EXPECT_NE(s.message.find("out of order: triangle"), std::string::npos)
+        << s.message;
+  }
+}
+
+}  // namespace
+}  // namespace dot

@@ -1,0 +1,178 @@
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""Client.fill_holes against a real dot-server: stages, hole selection,
+weights, polygons, large meshes in chunks, errors, cancel."""
+import threading
+import time
+
+import grpc
+import numpy as np
+import pytest
+
+import dot_client
+from dot_client import wire
+from shapes import border_edges, box_with_hole, grid_with_hole
+
+
+def test_fill_a_box(client):
+    v, quads = box_with_hole()
+    assert len(border_edges(np.concatenate(
+        [quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]]))) == 4
+    progress = []
+    r = client.fill_holes(v, quads, progress=progress.append)
+    assert isinstance(r, dot_client.FillResult)
+    assert r.vertices.dtype == np.float64 and r.faces.dtype == np.int32
+    assert r.faces.shape[1] == 3
+    rep = r.report
+    assert rep.version == 1 and rep.loops == 1 and rep.filled == 1
+    assert rep.closed
+    assert rep.repair.triangulated_polygons == len(quads)
+    assert rep.input_vertices == len(v)
+    assert len(r.vertices) == rep.input_vertices + rep.added_vertices
+    assert len(r.faces) == rep.input_faces + rep.added_faces
+    assert np.array_equal(r.vertices[:len(v)], v)
+    assert border_edges(r.faces) == []  # closed and consistently oriented
+    hole = rep.holes[0]
+    assert hole.status == "filled" and hole.boundary_vertices == 4
+    assert progress and progress[-1].holes_done == progress[-1].holes_total == 1
+    assert rep.to_dict()["holes"][0]["status"] == "filled"
+
+
+def test_stages(client):
+    v, f = grid_with_hole(30, slice(8, 20))
+    tri = client.fill_holes(v, f, stage="triangulate", skip_longest=True)
+    refined = client.fill_holes(v, f, stage="refine", skip_longest=True)
+    faired = client.fill_holes(v, f, stage="fair", skip_longest=True)
+    assert tri.report.added_vertices == 0
+    assert refined.report.added_vertices > 0
+    assert faired.report.added_vertices == refined.report.added_vertices
+    assert [h.status for h in tri.report.holes].count("filled") == 1
+    assert [h.status for h in tri.report.holes].count("skipped") == 1
+    assert not tri.report.closed  # the rim stays open
+    # The grid is flat: the faired patch stays in the plane.
+    assert np.allclose(faired.vertices[:, 2], 0, atol=1e-9)
+
+
+def test_hole_selection(client):
+    v, f = grid_with_hole(20)
+    small = client.fill_holes(v, f, max_hole_edges=20)
+    assert small.report.filled == 1 and small.report.skipped == 1
+    wide = client.fill_holes(v, f, max_hole_diameter=10)
+    assert wide.report.filled == 1
+    hole = min(small.report.holes, key=lambda h: h.boundary_vertices).id
+    only = client.fill_holes(v, f, holes=[hole], stage="triangulate")
+    assert [(h.boundary_vertices, h.status) for h in only.report.holes
+            if h.id == hole] == [(16, "filled")]
+    assert only.report.skipped == 1
+    none = client.fill_holes(v, f, holes=[99])
+    assert none.report.filled == 0
+    assert {h.reason for h in none.report.holes} == {
+        "not among the requested holes"}
+
+
+def test_weights_and_options(client):
+    v, f = grid_with_hole(20)
+    r = client.fill_holes(v, f, area=1, skip_longest=True, stage="refine",
+                          absolute_weights=True, density=2,
+                          fairing_continuity=2, time_budget_ms=10000,
+                          memory_budget_bytes=1 << 28)
+    assert r.report.filled == 1
+    with pytest.raises(dot_client.InvalidInput, match="every metric weight"):
+        client.fill_holes(v, f, area=0, shape=0)
+
+
+def test_no_repair_keeps_the_input_as_sent(client):
+    v, f = grid_with_hole(16)
+    r = client.fill_holes(v, f, no_repair=True, skip_longest=True)
+    assert np.array_equal(r.vertices[:len(v)], v)
+    assert np.array_equal(r.faces[:len(f)], f)  # nothing split here
+    assert r.report.repair.merged_vertices == 0
+
+
+def test_polygons_of_mixed_sizes(client):
+    v, quads = box_with_hole()
+    mixed = [list(q) for q in quads[:10]]
+    for q in quads[10:]:
+        mixed += [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+    r = client.fill_holes(v, mixed)
+    assert r.report.closed
+    assert r.report.repair.triangulated_polygons == 10
+
+
+def test_large_mesh_in_chunks(client):
+    # 100,489 vertices and 199,640 faces in (about 5 request messages of
+    # at most 1 MiB); back in several 1 MiB chunks each way.
+    v, f = grid_with_hole(317, slice(150, 156))
+    requests = list(wire.fill_requests("x", wire.pb.FillOptions(), v, f))
+    assert len(requests) >= 5
+    assert all(r.ByteSize() <= wire.REQUEST_BYTES + 64 for r in requests)
+    t0 = time.monotonic()
+    r = client.fill_holes(v, f, skip_longest=True, stage="triangulate")
+    elapsed = time.monotonic() - t0
+    assert len(f) == 199640
+    assert r.report.filled == 1
+    assert len(r.faces) == len(f) + r.report.added_faces
+    assert np.array_equal(r.vertices, v)
+    assert elapsed < 30
+
+
+def test_server_errors(client, limited_server):
+    with dot_client.Client(limited_server.address, timeout=30) as small:
+        big_v, big_f = grid_with_hole(40)
+        with pytest.raises(dot_client.DotError) as e:
+            small.fill_holes(big_v, big_f)
+        assert e.value.code == grpc.StatusCode.RESOURCE_EXHAUSTED
+        assert "limit" in e.value.message
+    # An edge of three faces: not manifold, not repairable.
+    fan = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [0, -1, 0]],
+                   dtype=float)
+    for no_repair in (False, True):
+        with pytest.raises(dot_client.DotError) as e:
+            client.fill_holes(fan, [[0, 1, 2], [0, 1, 3], [0, 1, 4]],
+                              no_repair=no_repair)
+        assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+        assert "edge 0-1 is shared by 3 faces" in e.value.message
+    # Faces that are all degenerate: nothing left to fill, not an error.
+    flat = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], dtype=float)
+    r = client.fill_holes(flat, [[0, 1, 2]])
+    assert r.report.repair.degenerate_faces == 1 and r.report.loops == 0
+
+
+@pytest.mark.parametrize("vertices, faces, kwargs, words", [
+    (np.zeros((3, 3)), np.zeros((0, 3), int), {}, "no faces"),
+    (np.zeros((3, 3)), [[0, 1, 3]], {}, "vertex index 3"),
+    (np.zeros((3, 3)), [[0, 1, -1]], {}, "vertex index -1"),
+    (np.zeros((3, 3)), [[0, 1]], {}, "shape (F, 3)"),
+    (np.zeros((4, 3)), [[0, 1, 2], [0, 1]], {}, "face 1 has 2 corners"),
+    (np.zeros((3, 3)), [[0, 1, 2.5]], {}, "integer"),
+    (np.zeros((3, 2)), [[0, 1, 2]], {}, "vertices must have shape"),
+    (np.array([[0, 0, np.inf]] * 3), [[0, 1, 2]], {}, "not finite"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"stage": "paint"}, "stage"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"max_hole_edges": -1}, "max_hole_edges"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"max_hole_diameter": -1.0},
+     "max_hole_diameter"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"holes": "1,2"}, "hole ids"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"fairing_continuity": 3},
+     "fairing_continuity"),
+    (np.zeros((3, 3)), [[0, 1, 2]], {"density": 500}, "density"),
+])
+def test_invalid_meshes_are_refused_before_the_call(vertices, faces, kwargs,
+                                                    words):
+    with dot_client.Client("127.0.0.1:1") as client:
+        with pytest.raises(dot_client.InvalidInput) as e:
+            client.fill_holes(vertices, faces, **kwargs)
+    assert words in e.value.message
+
+
+def test_timeout_and_cancel(server, client):
+    v, f = grid_with_hole(317, slice(100, 200))
+    with pytest.raises(dot_client.DotError) as e:
+        client.fill_holes(v, f, skip_longest=True, timeout=0.3)
+    assert e.value.code == grpc.StatusCode.DEADLINE_EXCEEDED
+    token = dot_client.CancelToken()
+    threading.Timer(0.3, token.cancel).start()
+    with pytest.raises(dot_client.DotError) as e:
+        client.fill_holes(v, f, skip_longest=True, cancel=token)
+    assert e.value.code == grpc.StatusCode.CANCELLED
+    assert server.alive()
+    small_v, small_f = grid_with_hole(10)
+    assert client.fill_holes(small_v, small_f, skip_longest=True).report.filled
