@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -45,7 +46,7 @@ void DrawBar(size_t done, size_t total) {
 void AddBatchCommand(CLI::App& app, Context* ctx) {
   struct Flags {
     std::vector<std::string> inputs;
-    std::string output, format = "obj";
+    std::string output, format = "obj", input_format;
     RequestFlags request;
     bool json = false;
   };
@@ -54,46 +55,110 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       "batch",
       "Triangulate many polygons over one stream (all holes of a mesh, all "
       "patches of a sketch).\nExample: dotctl batch holes/ -o patches/");
-  cmd->add_option("inputs", flags->inputs, "directories or polygon files")
+  cmd->add_option("inputs", flags->inputs,
+                  "directories or polygon files; - reads one polygon from "
+                  "stdin (needs -o DIR: its mesh is DIR/stdin.FORMAT)")
       ->required();
   cmd->add_option("-o,--output", flags->output,
                   "directory for the meshes (default: beside each input)");
   cmd->add_option("--format", flags->format, "obj, ply or off")
       ->check(CLI::IsMember({"obj", "ply", "off"}))
       ->capture_default_str();
-  cmd->add_flag("--json", flags->json, "one JSON object per input on stdout");
+  cmd->add_option("--input-format", flags->input_format,
+                  "xyz (plain text, the default) or obj: how to read a "
+                  "polygon from stdin; files go by their extension")
+      ->check(CLI::IsMember({"xyz", "txt", "obj"}));
+  cmd->add_flag("--json", flags->json,
+                "one JSON object per input (as triangulate's) on stdout");
   AddRequestFlags(cmd, &flags->request);
   cmd->callback([flags, ctx] {
     std::string error;
     const auto files = ExpandInputs(flags->inputs, &error);
+    if (error.empty() && std::count(files.begin(), files.end(), "-") > 1) {
+      error = "stdin can be read once: give - once";
+    }
+    if (error.empty() && flags->output.empty() &&
+        std::any_of(files.begin(), files.end(), IsStreamInput)) {
+      error = "a polygon read from a stream needs -o DIR for its mesh";
+    }
     if (!error.empty()) {
-      std::cerr << "dotctl: " << error << "\n";
-      ctx->exit_code = kExitUsage;
+      PrintError(error);
+      RaiseExitCode(ctx, kExitUsage);
       return;
     }
-    auto channel = ChannelOrReport(ctx);
-    if (!channel) return;
-    if (!flags->output.empty())
-      std::filesystem::create_directories(flags->output);
+    std::string directory_error;
+    if (!flags->output.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(flags->output, ec);
+      if (ec) {
+        directory_error =
+            "cannot create directory '" + flags->output + "': " + ec.message();
+      }
+    }
+    const auto report_one = [&](InputReport& report) {
+      if (report.outcome == kOutcomeInputError) {
+        PrintError(report.error);  // names the input already
+      } else if (!report.error.empty() &&
+                 report.outcome != kOutcomeNoTriangulation) {
+        PrintError(report.input + ": " + report.error);
+      }
+      if (!ctx->quiet) {
+        for (const std::string& note : report.notes) {
+          std::cerr << "dotctl: " << report.input << ": note: " << note << "\n";
+        }
+      }
+      if (flags->json) std::cout << ReportJson(report) << std::endl;
+      RaiseExitCode(ctx, report.exit_code);
+    };
+    // Every input read, and its output checked, before anything is sent.
     std::map<std::string, Pending> pending;
+    std::map<std::string, OutputTarget> targets;
+    std::map<std::string, std::vector<std::string>> notes;
+    std::map<std::string, std::vector<Vec3>> normals;
     std::vector<v1::TriangulateRequest> requests;
     for (const std::string& f : files) {
+      InputReport report;
+      report.input = f;
       PolygonData polygon;
-      const Status s = ReadPolygonFile(f, &polygon);
+      const Status s =
+          ReadPolygonInput(f, flags->input_format, &polygon, &report.notes);
       if (!s.ok()) {
-        std::cerr << "dotctl: " << s.message << "\n";
-        ctx->exit_code = kExitUsage;
-        return;
+        report.outcome = kOutcomeInputError;
+        report.error = s.message;
+        report.exit_code = kExitUsage;
+        report_one(report);
+        continue;
       }
+      OutputTarget target = ResolveOutput(f, flags->output, flags->format,
+                                          !flags->output.empty());
+      if (!directory_error.empty()) target.error = directory_error;
+      if (target.error.empty()) {
+        // The real check: a temporary file beside the target, removed here.
+        AtomicOutput probe;
+        target.error = probe.Open(target.Name());
+      }
+      if (!target.error.empty()) {
+        report.outcome = kOutcomeOutputError;
+        report.error = target.error;
+        report.exit_code = kExitUsage;
+        report_one(report);
+        continue;
+      }
+      targets[f] = target;
+      notes[f] = std::move(report.notes);
+      normals[f] = polygon.normals;
       requests.push_back(wire::MakeRequest(f, polygon, flags->request.weights,
                                            flags->request.ToOptions()));
       pending[f].input = std::move(polygon.vertices);
     }
+    if (requests.empty()) return;
+    auto channel = ChannelOrReport(ctx);
+    if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() +
                          std::chrono::seconds(static_cast<int64_t>(
-                             ctx->connection.timeout_s * files.size())));
+                             ctx->connection.timeout_s * requests.size())));
     auto stream = stub->TriangulateBatch(&context);
     const auto start = std::chrono::steady_clock::now();
     std::thread writer([&] {
@@ -103,7 +168,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       }
       stream->WritesDone();
     });
-    const bool tty = ::isatty(STDERR_FILENO) && !flags->json;
+    const bool tty = ::isatty(STDERR_FILENO) && !flags->json && !ctx->quiet;
     std::vector<Row> rows;
     v1::TriangulateResponse msg;
     while (stream->Read(&msg)) {
@@ -131,34 +196,55 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       } else {
         continue;  // progress
       }
+      PrintVerbose(*ctx, msg.id() + ": " + DescribeTiming(out));
+      InputReport report;
+      report.input = msg.id();
+      report.call = &out;
+      report.notes = std::move(notes[msg.id()]);
       Row row{msg.id(),      "", "", static_cast<uint32_t>(p.input.size()), 0,
               out.latency_ms};
-      std::string path;
-      if (out.status.ok() && out.summary.status() == v1::RESULT_STATUS_OK) {
-        path = OutputPathFor(msg.id(), flags->output, flags->format,
-                             !flags->output.empty());
-        const Status w = WriteMeshFile(path, out.mesh);
-        if (!w.ok()) out.status = {grpc::StatusCode::INTERNAL, w.message};
-        row.triangles = out.summary.triangle_count();
-      }
       if (!out.status.ok()) {
+        report.outcome = kOutcomeCallFailed;
+        report.error =
+            std::string(wire::GrpcCodeName(out.status.error_code())) + ": " +
+            out.status.error_message();
+        report.exit_code = ExitCodeFor(out.status);
         row.status = std::string(wire::GrpcCodeName(out.status.error_code()));
         row.detail = out.status.error_message();
-        ctx->exit_code = std::max(ctx->exit_code, ExitCodeFor(out.status));
       } else if (out.summary.status() != v1::RESULT_STATUS_OK) {
+        report.outcome = kOutcomeNoTriangulation;
+        report.error = out.summary.message();
+        report.exit_code = kExitNoTriangulation;
         row.status = "NO_TRIANGULATION";
         row.detail = out.summary.message();
-        if (ctx->exit_code == kExitOk) ctx->exit_code = kExitNoTriangulation;
       } else {
-        row.status = "OK";
-        row.detail = out.summary.solver() + ", cost " +
-                     std::to_string(out.summary.total_cost()) + " -> " + path;
+        CheckOrientation(out.mesh, normals[msg.id()], &report);
+        const OutputTarget& target = targets[msg.id()];
+        const std::string w = WriteOutput(target, out.mesh);
+        row.triangles = out.summary.triangle_count();
+        if (w.empty()) {
+          report.output = target.Name();
+          row.status = "OK";
+          row.detail = out.summary.solver() + ", cost " +
+                       std::to_string(out.summary.total_cost()) + " -> " +
+                       target.Name();
+          if (report.OrientationContradictsNormals()) {
+            row.detail +=
+                "; WARNING: " + std::to_string(report.faces_against_normals) +
+                " triangles face against the given normals";
+          }
+        } else {
+          report.outcome = kOutcomeWriteFailed;
+          report.error = w;
+          report.exit_code = kExitFailed;
+          row.status = "WRITE_FAILED";
+          row.detail = w;
+        }
       }
-      if (flags->json)
-        std::cout << OutcomeJson(msg.id(), out, path) << std::endl;
+      report_one(report);
       rows.push_back(std::move(row));
       pending.erase(it);
-      if (tty) DrawBar(rows.size(), files.size());
+      if (tty) DrawBar(rows.size(), requests.size());
     }
     writer.join();
     const grpc::Status status = stream->Finish();
@@ -166,7 +252,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
             .count();
-    if (!flags->json) {
+    if (!flags->json && !ctx->quiet) {
       std::printf("%-40s %8s %9s %9s  %-18s %s\n", "input", "vertices",
                   "triangles", "ms", "status", "detail");
       for (const Row& r : rows) {
@@ -174,15 +260,36 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
                     r.triangles, r.ms, r.status.c_str(), r.detail.c_str());
       }
       std::printf("%zu of %zu polygons answered in %.2f s\n", rows.size(),
-                  files.size(), seconds);
+                  requests.size(), seconds);
+      std::fflush(stdout);
+    }
+    // The inputs the stream never answered get their report too.
+    const grpc::Status lost =
+        status.ok() ? grpc::Status(grpc::StatusCode::DATA_LOSS,
+                                   "the stream ended without an answer")
+                    : status;
+    for (const auto& r : requests) {
+      if (pending.count(r.id()) == 0) continue;
+      CallOutcome out;
+      out.status = lost;
+      InputReport report;
+      report.input = r.id();
+      report.call = &out;
+      report.outcome = kOutcomeCallFailed;
+      report.error = std::string(wire::GrpcCodeName(lost.error_code())) + ": " +
+                     lost.error_message();
+      report.exit_code = ExitCodeFor(lost);
+      if (flags->json) {
+        report_one(report);
+      } else {
+        RaiseExitCode(ctx, report.exit_code);
+      }
     }
     if (!status.ok()) {
-      std::cerr << "dotctl: batch stream failed: "
-                << wire::GrpcCodeName(status.error_code()) << ": "
-                << status.error_message() << "\n";
-      ctx->exit_code = std::max(ctx->exit_code, ExitCodeFor(status));
-    } else if (rows.size() != files.size()) {
-      ctx->exit_code = std::max(ctx->exit_code, int{kExitFailed});
+      PrintError("batch stream failed: " +
+                 std::string(wire::GrpcCodeName(status.error_code())) + ": " +
+                 status.error_message());
+      RaiseExitCode(ctx, ExitCodeFor(status));
     }
   });
 }

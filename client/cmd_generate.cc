@@ -30,7 +30,10 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
   curve->add_option("-n,--vertices", c->n, "number of vertices")
       ->check(CLI::Range(3, 100000000))
       ->capture_default_str();
-  curve->add_option("-o,--output", c->out, "polygon file to write")->required();
+  curve
+      ->add_option("-o,--output", c->out,
+                   "polygon file to write (- for stdout)")
+      ->required();
   curve->callback([c, ctx] {
     const auto which = CurveFromName(c->name);
     if (!which) {
@@ -38,7 +41,9 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       ctx->exit_code = kExitUsage;
       return;
     }
-    const Status s = WritePolygonText(c->out, {MakeCurve(*which, c->n), {}});
+    const PolygonData polygon{MakeCurve(*which, c->n), {}};
+    const Status s = c->out == "-" ? WritePolygonText(std::cout, polygon)
+                                   : WritePolygonText(c->out, polygon);
     if (!s.ok()) {
       std::cerr << "dotctl: " << s.message << "\n";
       ctx->exit_code = kExitFailed;
@@ -59,22 +64,35 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
   hole->add_option("-t,--triangles", h->triangles, "triangles to remove")
       ->capture_default_str();
   hole->add_option("--seed", h->seed, "random seed")->capture_default_str();
-  hole->add_option("-o,--output", h->out, "polygon file to write")->required();
+  hole->add_option("-o,--output", h->out,
+                   "polygon file to write (- for stdout)")
+      ->required();
   AddGenerateHolesCommand(gen, ctx);
   hole->callback([h, ctx] {
     MeshData mesh;
     Hole result;
     Status s = ReadMeshFile(h->mesh, &mesh);
-    if (s.ok()) s = GrowHole(mesh, h->triangles, h->seed, &result);
-    if (s.ok()) s = WritePolygonText(h->out, result.boundary);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitUsage;  // unreadable input
+      return;
+    }
+    s = GrowHole(mesh, h->triangles, h->seed, &result);
+    if (s.ok()) {
+      s = h->out == "-" ? WritePolygonText(std::cout, result.boundary)
+                        : WritePolygonText(h->out, result.boundary);
+    }
     if (!s.ok()) {
       std::cerr << "dotctl: " << s.message << "\n";
       ctx->exit_code = kExitFailed;
       return;
     }
-    std::cout << "hole of " << result.triangles << " triangles, boundary of "
-              << result.boundary.vertices.size() << " vertices -> " << h->out
-              << "\n";
+    if (!ctx->quiet) {
+      (h->out == "-" ? std::cerr : std::cout)
+          << "hole of " << result.triangles << " triangles, boundary of "
+          << result.boundary.vertices.size() << " vertices -> " << h->out
+          << std::endl;
+    }
   });
 }
 
@@ -124,8 +142,10 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       ctx->exit_code = kExitFailed;
       return;
     }
-    std::cout << h->count << " holes of " << h->triangles << " triangles -> "
-              << h->out << " (removed patches: " << removed_path << ")\n";
+    if (!ctx->quiet) {
+      std::cout << h->count << " holes of " << h->triangles << " triangles -> "
+                << h->out << " (removed patches: " << removed_path << ")\n";
+    }
   });
 }
 

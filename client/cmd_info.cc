@@ -2,7 +2,8 @@
 // dotctl health | info | source: the standard health check, the server's
 // description and limits, and its source code (AGPL-3.0 section 13).
 #include <CLI/CLI.hpp>
-#include <fstream>
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 
 #include "commands.h"
@@ -13,6 +14,15 @@
 
 namespace dot::client {
 namespace {
+
+std::string MsSince(std::chrono::steady_clock::time_point t0) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f ms",
+                std::chrono::duration<double, std::milli>(
+                    std::chrono::steady_clock::now() - t0)
+                    .count());
+  return buf;
+}
 
 void SetDeadline(grpc::ClientContext* context, double seconds) {
   context->set_deadline(
@@ -44,24 +54,29 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
     grpc::health::v1::HealthCheckRequest request;
     request.set_service(*service);
     grpc::health::v1::HealthCheckResponse response;
+    const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->Check(&context, request, &response);
+    PrintVerbose(*ctx, "Check answered in " + MsSince(t0));
     if (!s.ok()) {
-      std::cout << "UNREACHABLE (" << wire::GrpcCodeName(s.error_code()) << ": "
-                << s.error_message() << ")\n";
-      ctx->exit_code =
-          s.error_code() == grpc::StatusCode::UNAVAILABLE ||
-                  s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
-              ? kExitUnavailable
-              : kExitFailed;
+      PrintError("UNREACHABLE (" +
+                 std::string(wire::GrpcCodeName(s.error_code())) + ": " +
+                 s.error_message() + ")");
+      RaiseExitCode(
+          ctx, s.error_code() == grpc::StatusCode::UNAVAILABLE ||
+                       s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
+                   ? kExitUnavailable
+                   : kExitFailed);
       return;
     }
-    std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
-                     response.status())
-              << "\n";
-    ctx->exit_code =
-        response.status() == grpc::health::v1::HealthCheckResponse::SERVING
-            ? kExitOk
-            : kExitFailed;
+    if (!ctx->quiet) {
+      std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
+                       response.status())
+                << "\n";
+    }
+    RaiseExitCode(
+        ctx, response.status() == grpc::health::v1::HealthCheckResponse::SERVING
+                 ? kExitOk
+                 : kExitFailed);
   });
 }
 
@@ -75,13 +90,16 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
     grpc::ClientContext context;
     SetDeadline(&context, ctx->connection.timeout_s);
     v1::ServerInfo i;
+    const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->GetServerInfo(&context, {}, &i);
+    PrintVerbose(*ctx, "GetServerInfo answered in " + MsSince(t0));
     if (!s.ok()) {
-      std::cerr << "dotctl: " << wire::GrpcCodeName(s.error_code()) << ": "
-                << s.error_message() << "\n";
-      ctx->exit_code = ExitCodeFor(s);
+      PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
+                 s.error_message());
+      RaiseExitCode(ctx, ExitCodeFor(s));
       return;
     }
+    if (ctx->quiet) return;
     std::cout << "version   " << i.version() << "\nbuild     " << i.build()
               << "\nbackends ";
     for (const auto& b : i.backends()) std::cout << " [" << b << "]";
@@ -101,31 +119,54 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
   auto out = std::make_shared<std::string>("dot-source.tar.gz");
   CLI::App* source = app.add_subcommand(
       "source", "Download the server's complete source code (tar.gz).");
-  source->add_option("-o,--output", *out, "file to write")
+  source
+      ->add_option("-o,--output", *out,
+                   "file to write (- for stdout); written to a temporary "
+                   "file renamed into place once complete, so a failed call "
+                   "leaves nothing behind")
       ->capture_default_str();
   source->callback([ctx, out] {
+    // Checked before the call: the file can be written.
+    AtomicOutput file;
+    const std::string unusable = file.Open(*out);
+    if (!unusable.empty()) {
+      PrintError(unusable);
+      RaiseExitCode(ctx, kExitUsage);
+      return;
+    }
     auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;
     SetDeadline(&context, ctx->connection.timeout_s);
+    const auto t0 = std::chrono::steady_clock::now();
     auto reader = stub->GetSource(&context, {});
-    std::ofstream file(*out, std::ios::binary);
     v1::SourceChunk chunk;
     size_t bytes = 0;
     while (reader->Read(&chunk)) {
-      file.write(chunk.data().data(),
-                 static_cast<std::streamsize>(chunk.data().size()));
+      file.stream().write(chunk.data().data(),
+                          static_cast<std::streamsize>(chunk.data().size()));
       bytes += chunk.data().size();
     }
     const grpc::Status s = reader->Finish();
+    PrintVerbose(*ctx, "GetSource: " + std::to_string(bytes) + " bytes in " +
+                           MsSince(t0));
     if (!s.ok()) {
-      std::cerr << "dotctl: " << wire::GrpcCodeName(s.error_code()) << ": "
-                << s.error_message() << "\n";
-      ctx->exit_code = ExitCodeFor(s);
+      PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
+                 s.error_message());
+      RaiseExitCode(ctx, ExitCodeFor(s));
+      return;  // the temporary file goes with `file`
+    }
+    const std::string written = file.Commit();
+    if (!written.empty()) {
+      PrintError(written);
+      RaiseExitCode(ctx, kExitFailed);
       return;
     }
-    std::cout << "wrote " << bytes << " bytes to " << *out << "\n";
+    if (!ctx->quiet) {
+      (*out == "-" ? std::cerr : std::cout)
+          << "wrote " << bytes << " bytes to " << *out << std::endl;
+    }
   });
 }
 

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "commands.h"
@@ -31,6 +32,8 @@ struct LoadFlags {
   std::vector<std::string> files;
   RequestFlags request;
   bool json = false, local = false, batch = false;
+  bool same_polygon = false;
+  uint64_t seed = 0;  // 0: a random one
 };
 
 void AddLoadFlags(CLI::App* cmd, LoadFlags* f) {
@@ -58,6 +61,15 @@ void AddLoadFlags(CLI::App* cmd, LoadFlags* f) {
       ->check(CLI::Range(3, 10000000))
       ->capture_default_str();
   cmd->add_option("--files", f->files, "use these polygon files instead");
+  cmd->add_flag("--same-polygon", f->same_polygon,
+                "send the polygons as they are, every time: after the first "
+                "call the server's search-space cache serves them (see "
+                "--no-cache); by default each request is a randomly rotated "
+                "copy, so the cache cannot");
+  cmd->add_option("--seed", f->seed,
+                  "seed of the rotations (default: a random one, printed in "
+                  "the report; the same seed repeats the same polygons, "
+                  "which a second run then finds in the cache)");
   cmd->add_flag("--json", f->json, "print the report as JSON");
   cmd->add_flag("--local", f->local,
                 "call the core in-process (the baseline for overhead)");
@@ -76,7 +88,7 @@ bool LoadPolygons(const LoadFlags& f, std::vector<PolygonData>* polygons,
   if (!f.files.empty()) {
     for (const std::string& file : ExpandInputs(f.files, error)) {
       PolygonData p;
-      const Status s = ReadPolygonFile(file, &p);
+      const Status s = ReadPolygonInput(file, "", &p, nullptr);
       if (!s.ok()) *error = s.message;
       polygons->push_back(std::move(p));
     }
@@ -95,66 +107,146 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, i == 0 ? 0 : i - 1)];
 }
 
+// A copy of `p` turned by a random rotation about its centroid, the same
+// for the same (seed, index): the same work for the server, but coordinates
+// its search-space cache has not seen.
+PolygonData Rotated(const PolygonData& p, uint64_t seed, int index) {
+  std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull +
+                      static_cast<uint64_t>(index));
+  std::normal_distribution<double> normal;
+  double q[4], norm = 0;
+  for (double& c : q) {
+    c = normal(rng);
+    norm += c * c;
+  }
+  norm = std::sqrt(norm);
+  for (double& c : q) c /= norm;
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double r[3][3] = {
+      {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+  Vec3 c{0, 0, 0};
+  for (const Vec3& v : p.vertices) {
+    c.x += v.x;
+    c.y += v.y;
+    c.z += v.z;
+  }
+  const double n = p.vertices.empty() ? 1.0 : double(p.vertices.size());
+  c = {c.x / n, c.y / n, c.z / n};
+  const auto turn = [&](const Vec3& v) {
+    return Vec3{r[0][0] * v.x + r[0][1] * v.y + r[0][2] * v.z,
+                r[1][0] * v.x + r[1][1] * v.y + r[1][2] * v.z,
+                r[2][0] * v.x + r[2][1] * v.y + r[2][2] * v.z};
+  };
+  PolygonData out;
+  out.vertices.reserve(p.vertices.size());
+  for (const Vec3& v : p.vertices) {
+    const Vec3 t = turn({v.x - c.x, v.y - c.y, v.z - c.z});
+    out.vertices.push_back({t.x + c.x, t.y + c.y, t.z + c.z});
+  }
+  for (const Vec3& v : p.normals) out.normals.push_back(turn(v));
+  return out;
+}
+
 // Outcomes by status label, and the latencies of the answered ones.
 class Tally {
  public:
-  void Record(const std::string& label, double ms) {
+  void Record(const std::string& label, double ms, bool cache_hit = false,
+              const std::string& error = "") {
     std::lock_guard<std::mutex> lock(mu_);
     ++by_status_[label];
     if (label == "OK" || label == "NO_TRIANGULATION") latencies_.push_back(ms);
+    if (cache_hit) ++cache_hits_;
+    if (!error.empty() && first_error_.count(label) == 0) {
+      first_error_[label] = error;
+    }
   }
-  // Prints the report; returns the number of errors.
-  int Print(double seconds, int concurrency, bool json) const;
+  // Prints the report (unless quiet); returns the exit code.
+  int Print(double seconds, const LoadFlags& flags, bool quiet) const;
 
  private:
   mutable std::mutex mu_;
   std::vector<double> latencies_;
   std::map<std::string, int> by_status_;
+  std::map<std::string, std::string> first_error_;
+  int cache_hits_ = 0;
 };
 
-int Tally::Print(double seconds, int concurrency, bool json) const {
+int Tally::Print(double seconds, const LoadFlags& flags, bool quiet) const {
   std::lock_guard<std::mutex> lock(mu_);
-  int total = 0, errors = 0;
+  int total = 0, errors = 0, unavailable = 0;
   for (const auto& [label, count] : by_status_) {
     total += count;
     if (label != "OK" && label != "NO_TRIANGULATION") errors += count;
+    if (label == "UNAVAILABLE") unavailable += count;
   }
+  const auto count_of = [&](const char* label) {
+    const auto it = by_status_.find(label);
+    return it == by_status_.end() ? 0 : it->second;
+  };
   const double throughput = latencies_.size() / seconds;
   const double p50 = Percentile(latencies_, 50),
                p90 = Percentile(latencies_, 90),
                p99 = Percentile(latencies_, 99),
                max = Percentile(latencies_, 100);
-  if (json) {
+  const char* polygons = flags.same_polygon ? "same" : "rotated";
+  if (flags.json) {
     std::printf(
         "{\"requests\":%d,\"succeeded\":%zu,\"errors\":%d,\"seconds\":%.3f,"
         "\"throughput_rps\":%.2f,\"latency_ms\":{\"p50\":%.3f,\"p90\":%.3f,"
-        "\"p99\":%.3f,\"max\":%.3f},\"by_status\":{",
+        "\"p99\":%.3f,\"max\":%.3f},\"polygons\":\"%s\",\"seed\":%llu,"
+        "\"cache_hits\":%d,\"by_status\":{",
         total, latencies_.size(), errors, seconds, throughput, p50, p90, p99,
-        max);
+        max, polygons, static_cast<unsigned long long>(flags.seed),
+        cache_hits_);
     bool first = true;
     for (const auto& [label, count] : by_status_) {
       std::printf("%s\"%s\":%d", first ? "" : ",", label.c_str(), count);
       first = false;
     }
     std::printf("}}\n");
-  } else {
+  } else if (!quiet) {
     std::printf("%d requests in %.2f s, concurrency %d: %.1f req/s\n", total,
-                seconds, concurrency, throughput);
+                seconds, flags.concurrency, throughput);
     std::printf("latency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n", p50,
                 p90, p99, max);
+    if (flags.same_polygon) {
+      std::printf(
+          "polygons: the same %s every request (--same-polygon); search "
+          "space from the server's cache in %d of %zu answers%s\n",
+          flags.files.size() > 1 ? "ones" : "one", cache_hits_,
+          latencies_.size(),
+          flags.request.no_cache ? "" : ": add --no-cache to measure compute");
+    } else {
+      std::printf(
+          "polygons: each request a randomly rotated copy (seed %llu), so "
+          "the server's search-space cache cannot serve it (%d cache hits)\n",
+          static_cast<unsigned long long>(flags.seed), cache_hits_);
+    }
     for (const auto& [label, count] : by_status_) {
       std::printf("  %-20s %d\n", label.c_str(), count);
     }
   }
-  return errors;
+  std::fflush(stdout);
+  for (const auto& [label, message] : first_error_) {
+    std::cerr << "dotctl: " << count_of(label.c_str()) << " requests failed "
+              << label << ", the first with: " << message << "\n";
+  }
+  if (errors > 0) {
+    return latencies_.empty() && unavailable == errors ? kExitUnavailable
+                                                       : kExitFailed;
+  }
+  return count_of("NO_TRIANGULATION") > 0 ? kExitNoTriangulation : kExitOk;
 }
 
 // What every worker of one run shares.
 struct LoadRun {
-  explicit LoadRun(const LoadFlags& f) : flags(f) {}
+  LoadRun(const LoadFlags& f, const Context& c) : flags(f), ctx(c) {}
   const LoadFlags& flags;
+  const Context& ctx;
   std::vector<PolygonData> polygons;
-  std::vector<v1::TriangulateRequest> requests;
+  std::vector<v1::TriangulateRequest> requests;                // as they are
   std::vector<std::unique_ptr<v1::Triangulator::Stub>> stubs;  // remote only
   double timeout_s = 0;
   Clock::time_point start, end;
@@ -165,6 +257,19 @@ struct LoadRun {
   int Claim() {
     const int i = next++;
     return i < flags.requests && Clock::now() < end ? i : -1;
+  }
+  // Request i, and its vertices: the polygon as it is with --same-polygon,
+  // else a rotated copy.
+  v1::TriangulateRequest RequestFor(int i, std::vector<Vec3>* input) const {
+    const size_t k = static_cast<size_t>(i) % polygons.size();
+    if (flags.same_polygon) {
+      *input = polygons[k].vertices;
+      return requests[k];
+    }
+    const PolygonData p = Rotated(polygons[k], flags.seed, i);
+    *input = p.vertices;
+    return wire::MakeRequest(requests[k].id(), p, flags.request.weights,
+                             flags.request.ToOptions());
   }
 };
 
@@ -185,14 +290,17 @@ void CallWorker(LoadRun& run, int w) {
       if (due >= run.end) return;
       std::this_thread::sleep_until(due);
     }
-    const auto& request = run.requests[i % run.requests.size()];
+    std::vector<Vec3> input;
+    const auto request = run.RequestFor(i, &input);
     const CallOutcome out =
-        run.flags.local
-            ? TriangulateLocal(request)
-            : TriangulateRemote(*run.stubs[w % run.stubs.size()], request,
-                                run.polygons[i % run.polygons.size()].vertices,
-                                run.timeout_s);
-    run.tally.Record(OutcomeLabel(out), out.latency_ms);
+        run.flags.local ? TriangulateLocal(request)
+                        : TriangulateRemote(*run.stubs[w % run.stubs.size()],
+                                            request, input, run.timeout_s);
+    PrintVerbose(run.ctx,
+                 "request " + std::to_string(i) + ": " + DescribeTiming(out));
+    run.tally.Record(OutcomeLabel(out), out.latency_ms,
+                     out.status.ok() && out.summary.cache_hit(),
+                     out.status.error_message());
   }
 }
 
@@ -218,7 +326,8 @@ void StreamWorker(LoadRun& run, int s, int window) {
       }
       const int i = run.Claim();
       if (i < 0) break;
-      v1::TriangulateRequest request = run.requests[i % run.requests.size()];
+      std::vector<Vec3> input;
+      v1::TriangulateRequest request = run.RequestFor(i, &input);
       request.set_id(std::to_string(i));
       {
         std::lock_guard<std::mutex> lock(m);
@@ -230,8 +339,10 @@ void StreamWorker(LoadRun& run, int s, int window) {
     stream->WritesDone();
   });
   v1::TriangulateResponse msg;
+  int answered = 0;
   while (stream->Read(&msg)) {
     if (!msg.has_summary() && !msg.has_error()) continue;
+    ++answered;
     const std::string label =
         msg.has_error()
             ? std::string(wire::GrpcCodeName(
@@ -246,9 +357,12 @@ void StreamWorker(LoadRun& run, int s, int window) {
       --in_flight;
     }
     cv.notify_one();
-    run.tally.Record(
-        label,
-        std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    const double ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    PrintVerbose(run.ctx, "request " + msg.id() + ": " + label + " in " +
+                              std::to_string(ms) + " ms");
+    run.tally.Record(label, ms, msg.has_summary() && msg.summary().cache_hit(),
+                     msg.has_error() ? msg.error().message() : "");
   }
   {
     std::lock_guard<std::mutex> lock(m);
@@ -257,18 +371,28 @@ void StreamWorker(LoadRun& run, int s, int window) {
   cv.notify_one();
   writer.join();
   const grpc::Status status = stream->Finish();
+  if (!status.ok() && sent.empty() && answered == 0) {
+    // The stream failed before it carried a request: that is one failure.
+    run.tally.Record(std::string(wire::GrpcCodeName(status.error_code())), 0,
+                     false, status.error_message());
+  }
   // Requests still unanswered failed with the stream.
   const std::string lost(wire::GrpcCodeName(
       status.ok() ? grpc::StatusCode::DATA_LOSS : status.error_code()));
-  for (size_t k = 0; k < sent.size(); ++k) run.tally.Record(lost, 0);
+  for (size_t k = 0; k < sent.size(); ++k) {
+    run.tally.Record(lost, 0, false,
+                     status.ok() ? "the stream ended without an answer"
+                                 : status.error_message());
+  }
 }
 
-void RunLoad(const LoadFlags& f, Context* ctx) {
-  LoadRun run(f);
+void RunLoad(LoadFlags& f, Context* ctx) {
+  while (f.seed == 0) f.seed = std::random_device{}();
+  LoadRun run(f, *ctx);
   std::string error;
   if (!LoadPolygons(f, &run.polygons, &error)) {
-    std::cerr << "dotctl: " << error << "\n";
-    ctx->exit_code = kExitUsage;
+    PrintError(error);
+    RaiseExitCode(ctx, kExitUsage);
     return;
   }
   for (size_t i = 0; i < run.polygons.size(); ++i) {
@@ -303,8 +427,7 @@ void RunLoad(const LoadFlags& f, Context* ctx) {
   for (auto& t : threads) t.join();
   const double seconds =
       std::chrono::duration<double>(Clock::now() - run.start).count();
-  const int errors = run.tally.Print(seconds, f.concurrency, f.json);
-  ctx->exit_code = errors > 0 ? kExitFailed : kExitOk;
+  RaiseExitCode(ctx, run.tally.Print(seconds, f, ctx->quiet));
 }
 
 }  // namespace
@@ -315,7 +438,7 @@ void AddLoadCommand(CLI::App& app, Context* ctx) {
       "load",
       "Load-test a server: --requests and --duration both bound the run.\n"
       "Example: dotctl load --concurrency 8 --requests 1000 --curve monkey "
-      "--n 2000");
+      "-n 2000");
   AddLoadFlags(cmd, flags.get());
   cmd->callback([flags, ctx] { RunLoad(*flags, ctx); });
 }

@@ -4,6 +4,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -139,23 +140,93 @@ std::string JsonQuote(const std::string& in) {
   return out + "\"";
 }
 
-std::string OutcomeJson(const std::string& name, const CallOutcome& o,
-                        const std::string& output_path) {
-  std::string summary = "null";
+std::string DescribeTiming(const CallOutcome& o) {
+  char buf[160];
   if (o.status.ok()) {
+    std::snprintf(buf, sizeof buf, "OK in %.1f ms (compute %.1f ms)",
+                  o.latency_ms, o.summary.compute_ms());
+  } else {
+    std::snprintf(
+        buf, sizeof buf, "%s in %.1f ms",
+        std::string(wire::GrpcCodeName(o.status.error_code())).c_str(),
+        o.latency_ms);
+  }
+  return buf;
+}
+
+void CheckOrientation(const MeshData& mesh, const std::vector<Vec3>& normals,
+                      InputReport* report) {
+  if (normals.empty() || mesh.triangles.empty()) return;
+  int against = 0, checked = 0;
+  const auto n = static_cast<int32_t>(normals.size());
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]],
+               &c = mesh.vertices[t[2]];
+    const Vec3 u{b.x - a.x, b.y - a.y, b.z - a.z},
+        v{c.x - a.x, c.y - a.y, c.z - a.z};
+    const Vec3 face{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z,
+                    u.x * v.y - u.y * v.x};
+    Vec3 given{0, 0, 0};
+    for (const int32_t k : t) {
+      if (k < n) {
+        given.x += normals[k].x;
+        given.y += normals[k].y;
+        given.z += normals[k].z;
+      }
+    }
+    const double d = face.x * given.x + face.y * given.y + face.z * given.z;
+    if (d == 0 || !std::isfinite(d)) continue;
+    ++checked;
+    if (d < 0) ++against;
+  }
+  report->faces_against_normals = against;
+  report->faces_checked = checked;
+}
+
+std::string DescribeReport(const InputReport& r) {
+  std::string s = r.call ? DescribeOutcome(*r.call) : r.error;
+  if (r.OrientationContradictsNormals()) {
+    s += ", WARNING: " + std::to_string(r.faces_against_normals) + " of " +
+         std::to_string(r.faces_checked) +
+         " triangles face against the given normals (is the loop reversed?)";
+  }
+  if (!r.output.empty()) s += " -> " + (r.output == "-" ? "stdout" : r.output);
+  return s;
+}
+
+std::string ReportJson(const InputReport& r) {
+  std::string summary = "null";
+  if (r.call && r.call->status.ok()) {
     google::protobuf::util::JsonPrintOptions options;
     options.always_print_primitive_fields = true;
     options.preserve_proto_field_names = true;
     summary.clear();
-    (void)google::protobuf::util::MessageToJsonString(o.summary, &summary,
+    (void)google::protobuf::util::MessageToJsonString(r.call->summary, &summary,
                                                       options);
   }
   std::ostringstream s;
-  s << "{\"input\":" << JsonQuote(name) << ",\"rpc_status\":"
-    << JsonQuote(std::string(wire::GrpcCodeName(o.status.error_code())))
-    << ",\"error\":" << JsonQuote(o.status.error_message())
-    << ",\"output\":" << JsonQuote(output_path)
-    << ",\"latency_ms\":" << o.latency_ms << ",\"summary\":" << summary << "}";
+  s << "{\"version\":1,\"input\":" << JsonQuote(r.input)
+    << ",\"outcome\":" << JsonQuote(r.outcome)
+    << ",\"exit_code\":" << r.exit_code << ",\"rpc_status\":"
+    << (r.call ? JsonQuote(std::string(
+                     wire::GrpcCodeName(r.call->status.error_code())))
+               : "null")
+    << ",\"error\":" << JsonQuote(r.error)
+    << ",\"output\":" << JsonQuote(r.output)
+    << ",\"latency_ms\":" << (r.call ? r.call->latency_ms : 0)
+    << ",\"notes\":[";
+  for (size_t i = 0; i < r.notes.size(); ++i) {
+    s << (i ? "," : "") << JsonQuote(r.notes[i]);
+  }
+  s << "],\"faces_against_normals\":";
+  if (r.faces_against_normals < 0) {
+    s << "null";
+  } else {
+    s << r.faces_against_normals;
+  }
+  s << ",\"orientation_contradicts_normals\":"
+    << (r.OrientationContradictsNormals() ? "true" : "false")
+    << ",\"summary\":" << summary << "}";
   return s.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.grpc.pb.h"
@@ -30,9 +31,47 @@ CallOutcome TriangulateLocal(const v1::TriangulateRequest& request);
 
 // "ok: 98 triangles, DOT2 over delaunay3d, cost ..." for people.
 std::string DescribeOutcome(const CallOutcome& outcome);
-// One JSON object for scripts.
-std::string OutcomeJson(const std::string& name, const CallOutcome& outcome,
-                        const std::string& output_path);
+// "OK in 12.3 ms (compute 8.1 ms)" for -v.
+std::string DescribeTiming(const CallOutcome& outcome);
+
+// The outcomes of one input of triangulate and batch (JSON "outcome").
+inline constexpr const char* kOutcomeOk = "ok";
+inline constexpr const char* kOutcomeNoTriangulation = "no_triangulation";
+inline constexpr const char* kOutcomeInputError = "input_error";
+inline constexpr const char* kOutcomeOutputError = "output_error";
+inline constexpr const char* kOutcomeCallFailed = "call_failed";
+inline constexpr const char* kOutcomeWriteFailed = "write_failed";
+
+// What dotctl reports for one input, whatever became of it.
+struct InputReport {
+  std::string input;
+  std::string outcome = kOutcomeOk;
+  int exit_code = 0;
+  std::string error;                  // why, for every outcome but ok
+  const CallOutcome* call = nullptr;  // when a call was made
+  std::string output;                 // the mesh written: a path, "-"
+  std::vector<std::string> notes;     // what reading the input changed
+  // Triangles of the result facing against the given normals (and those
+  // whose facing the normals decide); -1: not checked (no normals, no mesh).
+  int faces_against_normals = -1;
+  int faces_checked = 0;
+  // Most triangles face against the normals: the loop probably runs the
+  // other way round (or the normals point to the other side).
+  bool OrientationContradictsNormals() const {
+    return faces_against_normals > 0 &&
+           2 * faces_against_normals > faces_checked;
+  }
+};
+// Counts the triangles of `mesh` (input vertices first, oriented so that
+// the loop runs counter-clockwise around their normal) whose normal points
+// against the sum of the given normals at their corners.
+void CheckOrientation(const MeshData& mesh, const std::vector<Vec3>& normals,
+                      InputReport* report);
+// The summary line: DescribeOutcome, the orientation warning, "-> path".
+std::string DescribeReport(const InputReport& report);
+// One JSON object for scripts, version 1 (the fields: README.md, "Using
+// the client").
+std::string ReportJson(const InputReport& report);
 std::string JsonQuote(const std::string& s);
 
 }  // namespace dot::client

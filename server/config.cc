@@ -4,6 +4,10 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <thread>
@@ -11,10 +15,62 @@
 namespace dot::server {
 namespace {
 
+// Where a flag's value came from, for its error: the environment (when
+// the variable holds that value; the command line wins, so a value from
+// both is the same) or the command line.
+std::string Origin(const std::string& env, const std::string& value) {
+  const char* from_env = std::getenv(env.c_str());
+  if (from_env && value == from_env) {
+    return "the environment variable " + env + "='" + value + "'";
+  }
+  return "'" + value + "'";
+}
+
+// Checks an integer flag's text before CLI11 converts it: a whole number
+// within [min, max], or an error that names the flag, the environment
+// variable (when the value came from there) and what is wrong.
+CLI::Validator IntegerIn(const std::string& env, int64_t min, int64_t max) {
+  return CLI::Validator(
+      [env, min, max](std::string& value) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const long long v = std::strtoll(value.c_str(), &end, 10);
+        const bool whole = !value.empty() && end && *end == '\0' &&
+                           !std::isspace(static_cast<unsigned char>(value[0]));
+        if (!whole) return Origin(env, value) + " is not an integer";
+        if (errno != ERANGE && v >= min && v <= max) return std::string();
+        return Origin(env, value) + " is out of range: it must be " +
+               (v < min ? "at least " + std::to_string(min)
+                        : "at most " + std::to_string(max));
+      },
+      "", "integer");
+}
+
+// The largest value of T that an int64_t holds.
+template <typename T>
+int64_t TypeMax() {
+  const uint64_t type_max = std::min<uint64_t>(
+      static_cast<uint64_t>(std::numeric_limits<T>::max()),
+      static_cast<uint64_t>(std::numeric_limits<int64_t>::max()));
+  return static_cast<int64_t>(type_max);
+}
+
 template <typename T>
 void Add(CLI::App& app, const std::string& name, T* value,
          const std::string& env, const std::string& help) {
   app.add_option(name, *value, help)->envname(env)->capture_default_str();
+}
+
+// An integer flag: refused, naming its environment variable, unless it is
+// a whole number from `min` (0 by default: counts are never negative).
+template <typename T>
+void AddInt(CLI::App& app, const std::string& name, T* value,
+            const std::string& env, const std::string& help, int64_t min = 0,
+            int64_t max = std::numeric_limits<int64_t>::max()) {
+  app.add_option(name, *value, help)
+      ->envname(env)
+      ->capture_default_str()
+      ->check(IntegerIn(env, min, std::min(max, TypeMax<T>())));
 }
 
 // A size flag in units of 2^shift bytes (MiB: 20, KiB: 10) bound to a field
@@ -23,16 +79,13 @@ template <typename T>
 void AddSize(CLI::App& app, const std::string& name, int shift, T* bytes,
              const std::string& env, const std::string& help) {
   // Unsigned fields (size_t) reach past int64_t: clamp before shifting.
-  const uint64_t type_max = std::min<uint64_t>(
-      static_cast<uint64_t>(std::numeric_limits<T>::max()),
-      static_cast<uint64_t>(std::numeric_limits<int64_t>::max()));
-  const int64_t max = static_cast<int64_t>(type_max) >> shift;
+  const int64_t max = TypeMax<T>() >> shift;
   app.add_option_function<int64_t>(
          name,
          [bytes, shift](int64_t v) { *bytes = static_cast<T>(v << shift); },
          help)
       ->envname(env)
-      ->check(CLI::Range(int64_t{0}, max))
+      ->check(IntegerIn(env, 0, max))
       ->default_str(std::to_string(static_cast<int64_t>(*bytes) >> shift));
 }
 
@@ -41,21 +94,21 @@ void AddSize(CLI::App& app, const std::string& name, int shift, T* bytes,
 void AddServerFlags(CLI::App& app, ServerConfig* c) {
   ServiceOptions& s = c->service;
   Add(app, "--listen", &c->listen, "DOT_LISTEN", "gRPC address to listen on");
-  Add(app, "--threads", &c->pool.threads, "DOT_THREADS",
-      "compute threads (0: number of cores)");
-  Add(app, "--queue-size", &c->pool.queue_size, "DOT_QUEUE_SIZE",
-      "requests that may wait for a compute thread; beyond it the server "
-      "answers RESOURCE_EXHAUSTED");
-  Add(app, "--max-vertices", &s.max_vertices, "DOT_MAX_VERTICES",
-      "largest polygon accepted");
-  Add(app, "--max-compute-ms", &s.max_compute_ms, "DOT_MAX_COMPUTE_MS",
-      "compute time limit per request");
+  AddInt(app, "--threads", &c->pool.threads, "DOT_THREADS",
+         "compute threads (0: number of cores)");
+  AddInt(app, "--queue-size", &c->pool.queue_size, "DOT_QUEUE_SIZE",
+         "requests that may wait for a compute thread; beyond it the server "
+         "answers RESOURCE_EXHAUSTED");
+  AddInt(app, "--max-vertices", &s.max_vertices, "DOT_MAX_VERTICES",
+         "largest polygon accepted", 3);
+  AddInt(app, "--max-compute-ms", &s.max_compute_ms, "DOT_MAX_COMPUTE_MS",
+         "compute time limit per request", 1);
   AddSize(app, "--memory-budget-mb", 20, &s.solve.memory_budget_bytes,
           "DOT_MEMORY_BUDGET_MB",
           "table memory limit per request (requests may ask for less)");
-  Add(app, "--all-space-max-vertices", &s.solve.all_space_max_vertices,
-      "DOT_ALL_SPACE_MAX_VERTICES",
-      "search space 'auto' falls back to all triangles up to this size");
+  AddInt(app, "--all-space-max-vertices", &s.solve.all_space_max_vertices,
+         "DOT_ALL_SPACE_MAX_VERTICES",
+         "search space 'auto' falls back to all triangles up to this size");
   app.add_option_function<std::string>(
          "--delaunay-backend",
          [&s](const std::string& name) {
@@ -65,14 +118,15 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
       ->envname("DOT_DELAUNAY_BACKEND")
       ->check(CLI::IsMember({"cgal", "tetgen"}))
       ->default_str(std::string(DelaunayBackendName(s.solve.delaunay)));
-  Add(app, "--parallel-delaunay-min-points",
-      &s.solve.parallel_delaunay_min_points, "DOT_PARALLEL_DELAUNAY_MIN_POINTS",
-      "polygons with at least this many vertices get CGAL's parallel "
-      "(TBB) Delaunay step (default: never; measured slower on 2 cores)");
-  Add(app, "--delaunay-threads", &s.solve.delaunay_threads,
-      "DOT_DELAUNAY_THREADS",
-      "threads of the parallel Delaunay step (0: all cores); results do not "
-      "depend on it");
+  AddInt(app, "--parallel-delaunay-min-points",
+         &s.solve.parallel_delaunay_min_points,
+         "DOT_PARALLEL_DELAUNAY_MIN_POINTS",
+         "polygons with at least this many vertices get CGAL's parallel "
+         "(TBB) Delaunay step (default: never; measured slower on 2 cores)");
+  AddInt(app, "--delaunay-threads", &s.solve.delaunay_threads,
+         "DOT_DELAUNAY_THREADS",
+         "threads of the parallel Delaunay step (0: all cores); results do not "
+         "depend on it");
   AddSize(app, "--cache-mb", 20, &c->cache_bytes, "DOT_CACHE_MB",
           "memory for recently used search spaces, so re-solving a polygon "
           "with new weights runs only the dynamic program (0: no cache)");
@@ -81,25 +135,27 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
           "freed memory the allocator keeps for the next requests instead "
           "of returning it to the kernel (at most 1024; 0: glibc's "
           "defaults)");
-  Add(app, "--inline-max-vertices", &s.inline_max_vertices,
-      "DOT_INLINE_MAX_VERTICES",
-      "Triangulate calls over the Delaunay space up to this many vertices "
-      "run on the RPC thread when a compute slot is free, saving a thread "
-      "handoff (0: never)");
-  Add(app, "--fill-max-faces", &s.fill_max_faces, "DOT_FILL_MAX_FACES",
-      "largest mesh FillHoles accepts, in faces (held in memory: about 100 "
-      "bytes each)");
-  Add(app, "--fill-max-vertices", &s.fill_max_vertices, "DOT_FILL_MAX_VERTICES",
-      "largest mesh FillHoles accepts, in vertices");
-  Add(app, "--delaunay-helpers", &c->helpers.count, "DOT_DELAUNAY_HELPERS",
-      "TetGen helper processes (-1: one per thread, 0: in-process, "
-      "serialized)");
+  AddInt(app, "--inline-max-vertices", &s.inline_max_vertices,
+         "DOT_INLINE_MAX_VERTICES",
+         "Triangulate calls over the Delaunay space up to this many vertices "
+         "run on the RPC thread when a compute slot is free, saving a thread "
+         "handoff (0: never)");
+  AddInt(app, "--fill-max-faces", &s.fill_max_faces, "DOT_FILL_MAX_FACES",
+         "largest mesh FillHoles accepts, in faces (held in memory: about 100 "
+         "bytes each)");
+  AddInt(app, "--fill-max-vertices", &s.fill_max_vertices,
+         "DOT_FILL_MAX_VERTICES",
+         "largest mesh FillHoles accepts, in vertices");
+  AddInt(app, "--delaunay-helpers", &c->helpers.count, "DOT_DELAUNAY_HELPERS",
+         "TetGen helper processes (-1: one per thread, 0: in-process, "
+         "serialized)",
+         -1);
   Add(app, "--helper-path", &c->helpers.executable, "DOT_HELPER_PATH",
       "dot-delaunay-helper binary (default: next to dot-server)");
   AddSize(app, "--helper-memory-mb", 20, &c->helpers.memory_limit_bytes,
           "DOT_HELPER_MEMORY_MB", "address-space limit of each helper process");
-  Add(app, "--metrics-port", &c->metrics.port, "DOT_METRICS_PORT",
-      "Prometheus /metrics HTTP port (0: off)");
+  AddInt(app, "--metrics-port", &c->metrics.port, "DOT_METRICS_PORT",
+         "Prometheus /metrics HTTP port (0: off)", 0, 65535);
   Add(app, "--metrics-bind", &c->metrics.bind, "DOT_METRICS_BIND",
       "address the metrics endpoint binds");
   Add(app, "--tls-cert", &c->tls.cert, "DOT_TLS_CERT",
@@ -108,18 +164,19 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   Add(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
       "PEM CA bundle; when set, clients must present a certificate it "
       "signed (mutual TLS)");
-  Add(app, "--drain-seconds", &c->drain_seconds, "DOT_DRAIN_SECONDS",
-      "on SIGTERM, time in-flight requests get to finish before they are "
-      "cancelled");
+  AddInt(app, "--drain-seconds", &c->drain_seconds, "DOT_DRAIN_SECONDS",
+         "on SIGTERM, time in-flight requests get to finish before they are "
+         "cancelled");
   AddSize(app, "--max-message-mb", 20, &s.max_message_bytes,
           "DOT_MAX_MESSAGE_MB", "largest gRPC message accepted or sent");
   AddSize(app, "--chunk-kb", 10, &s.chunk_bytes, "DOT_CHUNK_KB",
           "approximate size of streamed mesh chunks");
-  Add(app, "--max-connection-age-s", &c->max_connection_age_s,
-      "DOT_MAX_CONNECTION_AGE_S",
-      "close client connections after this long so load rebalances across "
-      "replicas (0: never)");
-  Add(app, "--listener-patience-s", &c->listener_patience_s,
+  AddInt(app, "--max-connection-age-s", &c->max_connection_age_s,
+         "DOT_MAX_CONNECTION_AGE_S",
+         "close client connections after this long so load rebalances across "
+         "replicas (0: never)");
+  AddInt(
+      app, "--listener-patience-s", &c->listener_patience_s,
       "DOT_LISTENER_PATIENCE_S",
       "exit 70 (for a supervisor to restart) when connections wait this long "
       "unaccepted, as after running out of file descriptors (0: never)");

@@ -26,7 +26,12 @@ int main(int argc, char** argv) {
   dot::server::ServerConfig config;
   dot::server::AddServerFlags(app, &config);
   app.set_version_flag("--version", "dot-server " DOT_VERSION);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; a bad flag or environment variable 2.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
 
   const auto level = spdlog::level::from_str(config.log_level);
   if (level == spdlog::level::off && config.log_level != "off") {

@@ -5,10 +5,12 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "fixtures/dotctl_run.h"
 #include "fixtures/service_fixture.h"
@@ -84,8 +86,58 @@ TEST(TlsTest, TlsAndMutualTls) {
   fs::remove_all(d);
 }
 
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+bool Has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// dot-server run to its exit (bounded: `timeout` ends one that starts),
+// with `env` before it on the shell line; stdout and stderr together.
+CliRun RunServerWith(const std::string& env, const std::string& args = "") {
+  const std::string cmd = "DOT_METRICS_PORT=0 " + env + " timeout 5 " +
+                          DOT_SERVER_PATH + " --listen 127.0.0.1:0 " + args +
+                          " 2>&1";
+  CliRun r{0, ""};
+  FILE* p = ::popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// A wavy loop around the z axis, counter-clockwise seen from +z, with
+// every normal (0, 0, nz).
+void WriteWavyLoop(const std::string& path, int nz) {
+  std::ofstream out(path);
+  out.precision(17);
+  const int n = 40;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    out << std::cos(t) << ' ' << std::sin(t) << ' ' << 0.3 * std::cos(3 * t)
+        << " 0 0 " << nz << '\n';
+  }
+}
+
 class CliTest : public ::testing::Test {
  protected:
+  // dotctl with stdout and stderr apart (the shared runner joins them):
+  // `args` may redirect stdin and stdout, not stderr.
+  struct Split {
+    int code;
+    std::string out, err;
+  };
+  Split Run(const std::string& args) {
+    const std::string err = Path("stderr.txt");
+    const CliRun r = Dotctl(args + " 2> " + err + "; exit $?");
+    Split s{r.code, r.out, Slurp(err)};
+    fs::remove(err);
+    return s;
+  }
   void SetUp() override {
     server_ = testing::StartServer(testing::LoopbackConfig());
     dir_ = TempDir("cli");
@@ -206,6 +258,324 @@ TEST_F(CliTest, BatchLoadInfoAndHelp) {
   const CliRun help = Dotctl("load --help");
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.out.find("--concurrency"), std::string::npos);
+}
+
+TEST_F(CliTest, DashIsStdinAndStdout) {
+  ASSERT_EQ(Dotctl("generate curve mobius -n 60 -o " + Path("m.xyz")).code, 0);
+  // A polygon from stdin: its mesh goes to stdout (there is no "beside"),
+  // the summary to stderr.
+  Split split = Run(flag_ + "triangulate - < " + Path("m.xyz"));
+  EXPECT_EQ(split.code, 0) << split.err;
+  EXPECT_EQ(split.out.rfind("v ", 0), 0u) << split.out;
+  EXPECT_TRUE(Has(split.err, "stdin: ok: 58 triangles")) << split.err;
+  CliRun r;
+  // OBJ from stdin.
+  {
+    std::ofstream obj(Path("m.obj"));
+    obj.precision(17);
+    for (const Vec3& v : MakeCurve(Curve::kMobius, 60)) {
+      obj << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    }
+  }
+  r = Dotctl(flag_ + "triangulate - --input-format obj -o " + Path("b.ply") +
+             " < " + Path("m.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(Slurp(Path("b.ply")).rfind("ply\n", 0), 0u);
+  // -o -: the mesh on stdout in --format, the summary on stderr.
+  split = Run(flag_ + "triangulate " + Path("m.xyz") + " -o - --format off");
+  EXPECT_EQ(split.code, 0) << split.err;
+  EXPECT_EQ(split.out.rfind("OFF\n", 0), 0u) << split.out;
+  EXPECT_TRUE(Has(split.err, "ok: 58 triangles")) << split.err;
+  // --format decides when -o has no extension.
+  r = Dotctl(flag_ + "triangulate " + Path("m.xyz") + " -o " + Path("noext") +
+             " --format ply");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(Slurp(Path("noext")).rfind("ply\n", 0), 0u);
+  // /dev/stdin is a stream too: nothing is written into /dev.
+  r = Dotctl(flag_ + "triangulate /dev/stdin < " + Path("m.xyz") + " > " +
+             Path("d.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(fs::exists("/dev/stdin.tri.obj"));
+  fs::remove("/dev/stdin.tri.obj");
+  EXPECT_EQ(Slurp(Path("d.obj")).rfind("v ", 0), 0u);
+  // batch: one polygon from stdin, its mesh in -o DIR.
+  r = Dotctl(flag_ + "batch - " + Path("m.xyz") + " -o " + Path("out") + " < " +
+             Path("m.obj") + " --input-format obj");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out, "2 of 2 polygons answered")) << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "stdin.obj"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "m.obj"));
+  // generate writes to stdout too.
+  r = Dotctl("generate curve spiral -n 30 -o - > " + Path("s.xyz"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  PolygonData spiral;
+  EXPECT_TRUE(ReadPolygonFile(Path("s.xyz"), &spiral).ok());
+  EXPECT_EQ(spiral.vertices.size(), 30u);
+}
+
+TEST_F(CliTest, OutputCheckedBeforeTheWorkAndJsonForEveryOutcome) {
+  ASSERT_EQ(Dotctl("generate curve mobius -n 60 -o " + Path("m.xyz")).code, 0);
+  const std::string m = Path("m.xyz");
+  // A missing directory: refused before the call, with the reason, and a
+  // JSON object that says no call was made.
+  const std::string missing = Path("no/such/dir/m.obj");
+  const Split split = Run(flag_ + "triangulate " + m + " --json -o " + missing);
+  EXPECT_EQ(split.code, 2) << split.out;
+  EXPECT_TRUE(Has(split.out, "\"version\":1")) << split.out;
+  EXPECT_TRUE(Has(split.out, "\"outcome\":\"output_error\"")) << split.out;
+  EXPECT_TRUE(Has(split.out, "\"rpc_status\":null,")) << split.out;
+  EXPECT_TRUE(Has(split.out, "\"summary\":null}")) << split.out;
+  EXPECT_TRUE(Has(split.err,
+                  "cannot write '" + missing + "': No such file or directory"))
+      << split.err;
+  CliRun r;
+  // A bad extension, or one --format contradicts: no work, no "ok".
+  r = Dotctl(flag_ + "triangulate " + m + " -o " + Path("x.stl"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "cannot tell the mesh format")) << r.out;
+  EXPECT_FALSE(Has(r.out, "ok:")) << r.out;
+  r = Dotctl(flag_ + "triangulate " + m + " -o " + Path("x.obj") +
+             " --format ply");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_FALSE(Has(r.out, "ok:")) << r.out;
+  EXPECT_FALSE(fs::exists(Path("x.obj")));
+  // An output that is a directory takes the mesh inside it.
+  fs::create_directories(dir_ / "meshes");
+  r = Dotctl(flag_ + "triangulate " + m + " -o " + Path("meshes"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "meshes" / "m.obj"));
+  // Several inputs and -o naming a mesh file.
+  r = Dotctl(flag_ + "triangulate " + m + " " + m + " -o " + Path("y.obj"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "need a directory")) << r.out;
+  // An unreadable input gets its JSON object too.
+  r = Dotctl(flag_ + "triangulate " + Path("none.xyz") + " --json 2>/dev/null");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"outcome\":\"input_error\"")) << r.out;
+  EXPECT_TRUE(Has(r.out, "No such file or directory")) << r.out;
+  // A write that fails after the work says so: not OK without an error.
+  r = Dotctl(flag_ + "triangulate " + m +
+             " --json --format obj -o /dev/full 2>/dev/null");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"outcome\":\"write_failed\"")) << r.out;
+  EXPECT_TRUE(Has(r.out, "No space left on device")) << r.out;
+  EXPECT_FALSE(Has(r.out, "\"error\":\"\"")) << r.out;
+  // Success: the outcome, the exit code and where the mesh went.
+  r = Dotctl(flag_ + "triangulate " + m + " --json -o " + Path("ok.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out,
+                  "\"outcome\":\"ok\",\"exit_code\":0,"
+                  "\"rpc_status\":\"OK\",\"error\":\"\",\"output\":\"" +
+                      Path("ok.obj") + "\""))
+      << r.out;
+}
+
+TEST_F(CliTest, ErrorsOnStderrQuietAndVerbose) {
+  ASSERT_EQ(Dotctl("generate curve mobius -n 60 -o " + Path("m.xyz")).code, 0);
+  std::ofstream(Path("bad.xyz")) << "0 0 0\n1 0 0\n1 0 0\n0 1 1\n";
+  // A server-side failure: on stderr only.
+  Split split = Run(flag_ + "triangulate " + Path("bad.xyz"));
+  EXPECT_EQ(split.code, 1);
+  EXPECT_EQ(split.out, "");
+  EXPECT_TRUE(Has(split.err, "INVALID_ARGUMENT: vertices 1 and 2"))
+      << split.err;
+  split = Run("--server 127.0.0.1:1 health");
+  EXPECT_EQ(split.code, 3);
+  EXPECT_EQ(split.out, "");
+  EXPECT_TRUE(Has(split.err, "UNREACHABLE")) << split.err;
+  CliRun r;
+  // -q: nothing but errors, before or after the subcommand.
+  r = Dotctl(flag_ + "-q triangulate " + Path("m.xyz") + " -o " +
+             Path("q.obj"));
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(fs::exists(Path("q.obj")));
+  r = Dotctl(flag_ + "health --quiet");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "");
+  r = Dotctl(flag_ + "-q triangulate " + Path("bad.xyz"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(Has(r.out, "INVALID_ARGUMENT")) << r.out;
+  // -v: a timing line per request, on stderr.
+  split = Run(flag_ + "triangulate " + Path("m.xyz") + " -o " + Path("v.obj") +
+              " -v");
+  EXPECT_EQ(split.code, 0);
+  EXPECT_TRUE(Has(split.err, "m.xyz: OK in ")) << split.err;
+  EXPECT_TRUE(Has(split.err, " ms (compute ")) << split.err;
+  EXPECT_FALSE(Has(split.out, "OK in")) << split.out;
+  split = Run(flag_ + "-v load -c 1 -r 2 -n 40");
+  EXPECT_EQ(split.code, 0);
+  EXPECT_TRUE(Has(split.err, "request 1: OK in ")) << split.err;
+  EXPECT_EQ(Dotctl(flag_ + "-q -v health").code, 2);
+}
+
+TEST_F(CliTest, MistypedSubcommandGetsASuggestion) {
+  CliRun r = Dotctl("triangulat x.xyz");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(Has(r.out,
+                  "dotctl: unknown command 'triangulat'; did you mean "
+                  "'triangulate'?"))
+      << r.out;
+  r = Dotctl("generate curv monkey -o x.xyz");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(Has(r.out, "did you mean 'curve'?")) << r.out;
+}
+
+TEST_F(CliTest, ExitCodesOfEverySubcommand) {
+  ASSERT_EQ(Dotctl("generate curve mobius -n 60 -o " + Path("m.xyz")).code, 0);
+  ASSERT_EQ(Dotctl("generate curve trefoil -n 90 -o " + Path("knot.xyz")).code,
+            0);
+  const std::string down = "--server 127.0.0.1:1 --timeout 2 ";
+  const std::string m = Path("m.xyz");
+  EXPECT_EQ(Dotctl(down + "load -r 3 -n 40").code, 3);
+  EXPECT_EQ(Dotctl(down + "load --batch -r 3 -n 40").code, 3);
+  EXPECT_EQ(Dotctl(down + "info").code, 3);
+  EXPECT_EQ(Dotctl(down + "source -o " + Path("src.tgz")).code, 3);
+  EXPECT_FALSE(fs::exists(Path("src.tgz")));
+  EXPECT_EQ(Dotctl(down + "batch " + m).code, 3);
+  EXPECT_EQ(Dotctl(down + "triangulate " + m).code, 3);
+  EXPECT_EQ(Dotctl(down + "health").code, 3);
+  EXPECT_EQ(Dotctl(flag_ + "load -r 2 -n 40").code, 0);
+  EXPECT_EQ(Dotctl(flag_ + "load -r 2 --files " + Path("knot.xyz")).code, 4);
+  EXPECT_EQ(
+      Dotctl(flag_ + "batch " + Path("knot.xyz") + " -o " + Path("o")).code, 4);
+  EXPECT_EQ(Dotctl(flag_ + "batch " + Path("none.xyz")).code, 2);
+  EXPECT_EQ(Dotctl(flag_ + "load --files " + Path("none.xyz")).code, 2);
+  EXPECT_EQ(
+      Dotctl("generate hole " + Path("none.off") + " -o " + Path("h.xyz")).code,
+      2);
+  EXPECT_EQ(Dotctl(flag_ + "info").code, 0);
+}
+
+TEST_F(CliTest, ServerNamesTheEnvironmentVariableOfABadValue) {
+  CliRun r = RunServerWith("DOT_THREADS=abc");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "DOT_THREADS='abc' is not an integer")) << r.out;
+  r = RunServerWith("DOT_THREADS=-3");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out,
+                  "DOT_THREADS='-3' is out of range: it must be at "
+                  "least 0"))
+      << r.out;
+  for (const char* env :
+       {"DOT_QUEUE_SIZE=-1", "DOT_MAX_CONNECTION_AGE_S=-5",
+        "DOT_DRAIN_SECONDS=-1", "DOT_CACHE_MB=-3", "DOT_METRICS_PORT=70000",
+        "DOT_DELAUNAY_HELPERS=-2", "DOT_FILL_MAX_FACES=-1"}) {
+    r = RunServerWith(env);
+    EXPECT_EQ(r.code, 2) << env << ": " << r.out;
+    const std::string name =
+        std::string(env).substr(0, std::string(env).find('='));
+    EXPECT_TRUE(Has(r.out, name + "='")) << env << ": " << r.out;
+  }
+  // From the command line the flag is named (the environment is not).
+  r = RunServerWith("", "--threads x3");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "--threads: 'x3' is not an integer")) << r.out;
+}
+
+TEST_F(CliTest, LoadVariesItsPolygonsUnlessAskedNot) {
+  CliRun r = Dotctl(flag_ + "load -c 1 -r 6 -n 60 --json");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"succeeded\":6,")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"polygons\":\"rotated\"")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"cache_hits\":0,")) << r.out;
+  r = Dotctl(flag_ + "load --batch -c 2 -r 6 -n 60 --json");
+  EXPECT_TRUE(Has(r.out, "\"cache_hits\":0,")) << r.out;
+  r = Dotctl(flag_ + "load -c 1 -r 6 -n 60 --same-polygon --json");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"polygons\":\"same\"")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\"cache_hits\":5,")) << r.out;
+  r = Dotctl(flag_ + "load -c 1 -r 3 -n 60");
+  EXPECT_TRUE(Has(r.out, "each request a randomly rotated copy")) << r.out;
+}
+
+TEST_F(CliTest, SourceIsWrittenAtomically) {
+  // The fixture's server has no archive: the call fails and leaves nothing.
+  CliRun r = Dotctl(flag_ + "source -o " + Path("src.tgz"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_FALSE(fs::exists(Path("src.tgz")));
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(e.path().filename().string().find(".src.tgz"), std::string::npos)
+        << e.path();
+  }
+  // One that has one: to a file, and to stdout.
+  const std::string bytes(300000, 'x');
+  std::ofstream(Path("archive.tar.gz"), std::ios::binary) << bytes;
+  auto config = testing::LoopbackConfig();
+  config.service.source_archive = Path("archive.tar.gz");
+  auto s = testing::StartServer(config);
+  const std::string other = "--server " + s.address + " ";
+  r = Dotctl(other + "source -o " + Path("src.tgz"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Slurp(Path("src.tgz")) == bytes);
+  const Split piped = Run(other + "source -o -");
+  EXPECT_EQ(piped.code, 0) << piped.err;
+  EXPECT_TRUE(piped.out == bytes) << piped.out.size() << " bytes";
+  EXPECT_FALSE(fs::exists(fs::current_path() / "-"));
+}
+
+TEST_F(CliTest, LoopsAsExportersWriteThem) {
+  const std::vector<Vec3> loop = MakeCurve(Curve::kMobius, 60);
+  // An xyz loop that repeats its first point at the end.
+  {
+    std::ofstream xyz(Path("closed.xyz"));
+    xyz.precision(17);
+    for (size_t i = 0; i <= loop.size(); ++i) {
+      const Vec3& v = loop[i % loop.size()];
+      xyz << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    }
+  }
+  CliRun r = Dotctl(flag_ + "triangulate " + Path("closed.xyz") + " -o " +
+                    Path("closed.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out, "ok: 58 triangles")) << r.out;
+  EXPECT_TRUE(Has(r.out, "note: dropped the last vertex")) << r.out;
+  r = Dotctl(flag_ + "triangulate " + Path("closed.xyz") + " --json -o " +
+             Path("closed.obj") + " 2>/dev/null");
+  EXPECT_TRUE(Has(r.out, "\"notes\":[\"dropped the last vertex")) << r.out;
+  // OBJ with one "l a b" line per edge, as Blender writes it.
+  {
+    std::ofstream obj(Path("edges.obj"));
+    obj.precision(17);
+    obj << "# Blender\no Loop\n";
+    for (const Vec3& v : loop) {
+      obj << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    }
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const size_t a = (i * 7) % loop.size();  // edges in a shuffled order
+      obj << "l " << (a % 2 ? a + 1 : (a + 1) % loop.size() + 1) << ' '
+          << (a % 2 ? (a + 1) % loop.size() + 1 : a + 1) << '\n';
+    }
+  }
+  r = Dotctl(flag_ + "triangulate " + Path("edges.obj") + " -o " +
+             Path("edges.tri.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out, "ok: 58 triangles")) << r.out;
+  std::ofstream(Path("open.obj")) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\n"
+                                     "l 1 2\nl 2 3\nl 3 4\n";
+  r = Dotctl(flag_ + "triangulate " + Path("open.obj"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(Has(r.out, "do not close into a loop")) << r.out;
+  // A loop running against its normals: accepted, with a warning.
+  WriteWavyLoop(Path("up.xyz"), 1);
+  WriteWavyLoop(Path("down.xyz"), -1);
+  r = Dotctl(flag_ + "triangulate " + Path("up.xyz") + " --json -o " +
+             Path("up.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out,
+                  "\"faces_against_normals\":0,"
+                  "\"orientation_contradicts_normals\":false"))
+      << r.out;
+  r = Dotctl(flag_ + "triangulate " + Path("down.xyz") + " -o " +
+             Path("down.obj"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(Has(r.out,
+                  "WARNING: 38 of 38 triangles face against the given "
+                  "normals"))
+      << r.out;
+  r = Dotctl(flag_ + "triangulate " + Path("down.xyz") + " --json -o " +
+             Path("down.obj"));
+  EXPECT_TRUE(Has(r.out, "\"orientation_contradicts_normals\":true")) << r.out;
 }
 
 }  // namespace

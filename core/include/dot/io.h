@@ -6,8 +6,15 @@
 //    normal); blank lines and lines starting with '#' are skipped.
 //  - OBJ: "v x y z" vertices and an "l i j k ..." polyline giving the loop
 //    (1-based, negative indices count from the end; a repeated first index
-//    closing the loop is dropped). Without an "l" line, the "v" order is the
-//    loop. "vn" lines, one per vertex, are boundary normals.
+//    closing the loop is dropped). Several "l" lines (one per edge, "l a b",
+//    as Blender writes a loop) are chained into the loop, which starts with
+//    the first edge in its direction; edges that do not form exactly one
+//    closed loop (an open chain, a branch, several loops) are refused with a
+//    message naming a vertex. Without an "l" line, the "v" order is the loop.
+//    "vn" lines, one per vertex, are boundary normals.
+// Either way, a loop that ends by repeating its first point (the same
+// coordinates, as many exporters close a loop) has the repeats dropped, and a
+// note saying so is added to `notes` when given.
 // Mesh files (by extension): written as .obj, .off or .ply (binary little
 // endian float64 by default, ASCII on request), every coordinate exactly
 // (17 significant digits in text); read with CGAL's polygon-soup readers
@@ -35,11 +42,17 @@ struct MeshData {
   std::vector<Triangle> triangles;
 };
 
-// Format from the extension: .obj is OBJ, anything else plain text.
-Status ReadPolygonFile(const std::string& path, PolygonData* out);
-Status ReadPolygonText(std::istream& in, PolygonData* out);
-Status ReadPolygonObj(std::istream& in, PolygonData* out);
+// Format from the extension: .obj is OBJ, anything else plain text. Errors
+// name the file (and the reason a file cannot be opened). `notes`, when not
+// null, receives what the reader changed (a dropped closing vertex).
+Status ReadPolygonFile(const std::string& path, PolygonData* out,
+                       std::vector<std::string>* notes = nullptr);
+Status ReadPolygonText(std::istream& in, PolygonData* out,
+                       std::vector<std::string>* notes = nullptr);
+Status ReadPolygonObj(std::istream& in, PolygonData* out,
+                      std::vector<std::string>* notes = nullptr);
 Status WritePolygonText(const std::string& path, const PolygonData& polygon);
+Status WritePolygonText(std::ostream& out, const PolygonData& polygon);
 
 // Format from the extension: .obj, .ply or .off.
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,

@@ -37,7 +37,76 @@ bool ObjIndex(long raw, size_t count, int32_t* out) {
 
 }  // namespace
 
-Status ReadPolygonText(std::istream& in, PolygonData* out) {
+namespace {
+
+// Drops the points at the end of a loop that repeat its first point (a loop
+// closed by repeating its start, as many exporters write it), with a note.
+void DropClosingRepeats(PolygonData* p, std::vector<std::string>* notes) {
+  size_t dropped = 0;
+  while (p->vertices.size() > 1 && p->vertices.back() == p->vertices.front()) {
+    p->vertices.pop_back();
+    if (!p->normals.empty()) p->normals.pop_back();
+    ++dropped;
+  }
+  if (dropped > 0 && notes) {
+    notes->push_back(
+        dropped == 1
+            ? "dropped the last vertex, a repeat of the first closing the loop"
+            : "dropped the last " + std::to_string(dropped) +
+                  " vertices, repeats of the first closing the loop");
+  }
+}
+
+// Chains edges (pairs of vertex indices, in any direction and order) into
+// one closed loop, starting with the first edge in its direction.
+Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
+                  size_t vertex_count, std::vector<int32_t>* loop) {
+  const auto name = [](int32_t v) { return "vertex " + std::to_string(v + 1); };
+  std::vector<std::vector<int32_t>> next(vertex_count);
+  size_t used = 0;
+  for (const auto& [a, b] : edges) {
+    if (std::find(next[a].begin(), next[a].end(), b) != next[a].end()) {
+      continue;  // the same edge again
+    }
+    used += next[a].empty() + next[b].empty();
+    next[a].push_back(b);
+    next[b].push_back(a);
+  }
+  for (size_t v = 0; v < vertex_count; ++v) {
+    const size_t degree = next[v].size();
+    if (degree == 1) {
+      return InvalidArgument("the 'l' edges do not close into a loop: " +
+                             name(static_cast<int32_t>(v)) +
+                             " ends an open chain");
+    }
+    if (degree > 2) {
+      return InvalidArgument(
+          "the 'l' edges branch at " + name(static_cast<int32_t>(v)) + " (" +
+          std::to_string(degree) + " edges); a polygon is one closed loop");
+    }
+  }
+  const int32_t start = edges.front().first;
+  int32_t prev = start, cur = edges.front().second;
+  loop->assign(1, start);
+  while (cur != start) {
+    loop->push_back(cur);
+    const int32_t after = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+    prev = cur;
+    cur = after;
+  }
+  if (loop->size() != used) {
+    return InvalidArgument(
+        "the 'l' edges form more than one loop (the one through " +
+        name(start) + " has " + std::to_string(loop->size()) + " of the " +
+        std::to_string(used) + " vertices); a polygon is one closed loop");
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+Status ReadPolygonText(std::istream& in, PolygonData* out,
+                       std::vector<std::string>* notes) {
   *out = {};
   std::string line;
   for (int lineno = 1; std::getline(in, line); ++lineno) {
@@ -63,13 +132,15 @@ Status ReadPolygonText(std::istream& in, PolygonData* out) {
   if (!out->normals.empty() && out->normals.size() != out->vertices.size()) {
     return InvalidArgument("some lines have normals and some do not");
   }
+  DropClosingRepeats(out, notes);
   return OkStatus();
 }
 
-Status ReadPolygonObj(std::istream& in, PolygonData* out) {
+Status ReadPolygonObj(std::istream& in, PolygonData* out,
+                      std::vector<std::string>* notes) {
   *out = {};
   std::vector<Vec3> v, vn;
-  std::vector<int32_t> loop;
+  std::vector<std::vector<int32_t>> polylines;  // one per 'l' line
   std::string line;
   for (int lineno = 1; std::getline(in, line); ++lineno) {
     std::istringstream s(line);
@@ -83,10 +154,7 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
       }
       (tag == "v" ? v : vn).push_back(p);
     } else if (tag == "l") {
-      if (!loop.empty()) {
-        return InvalidArgument("line " + std::to_string(lineno) +
-                               ": only one 'l' polyline is supported");
-      }
+      std::vector<int32_t> polyline;
       std::string tok;
       while (s >> tok) {
         int32_t idx;
@@ -95,12 +163,38 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
           return InvalidArgument("line " + std::to_string(lineno) +
                                  ": index '" + tok + "' is out of range");
         }
-        loop.push_back(idx);
+        polyline.push_back(idx);
       }
+      if (polyline.empty()) continue;
+      if (!polylines.empty() && polyline.size() < 2) {
+        return InvalidArgument("line " + std::to_string(lineno) +
+                               ": an 'l' line of one vertex is no edge");
+      }
+      polylines.push_back(std::move(polyline));
     }
   }
-  if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
-  if (loop.empty()) {
+  std::vector<int32_t> loop;
+  if (polylines.size() == 1) {
+    loop = std::move(polylines.front());
+    if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+  } else if (polylines.size() > 1) {
+    if (polylines.front().size() < 2) {
+      return InvalidArgument("the first 'l' line has one vertex: no edge");
+    }
+    std::vector<std::pair<int32_t, int32_t>> edges;
+    for (const auto& polyline : polylines) {
+      for (size_t i = 0; i + 1 < polyline.size(); ++i) {
+        if (polyline[i] == polyline[i + 1]) {
+          return InvalidArgument("an 'l' edge joins vertex " +
+                                 std::to_string(polyline[i] + 1) +
+                                 " to itself");
+        }
+        edges.emplace_back(polyline[i], polyline[i + 1]);
+      }
+    }
+    const Status chained = ChainEdges(edges, v.size(), &loop);
+    if (!chained.ok()) return chained;
+  } else {
     for (size_t i = 0; i < v.size(); ++i)
       loop.push_back(static_cast<int32_t>(i));
   }
@@ -112,21 +206,26 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out) {
     }
     for (int32_t i : loop) out->normals.push_back(vn[i]);
   }
+  DropClosingRepeats(out, notes);
   return OkStatus();
 }
 
-Status ReadPolygonFile(const std::string& path, PolygonData* out) {
+Status ReadPolygonFile(const std::string& path, PolygonData* out,
+                       std::vector<std::string>* notes) {
+  errno = 0;
   std::ifstream in(path);
-  if (!in) return InvalidArgument("cannot open polygon file '" + path + "'");
-  Status s = Extension(path) == "obj" ? ReadPolygonObj(in, out)
-                                      : ReadPolygonText(in, out);
+  if (!in) {
+    return InvalidArgument(
+        "cannot open polygon file '" + path + "'" +
+        (errno ? std::string(": ") + std::strerror(errno) : std::string()));
+  }
+  Status s = Extension(path) == "obj" ? ReadPolygonObj(in, out, notes)
+                                      : ReadPolygonText(in, out, notes);
   if (!s.ok()) s.message = path + ": " + s.message;
   return s;
 }
 
-Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
-  std::ofstream out(path);
-  if (!out) return InvalidArgument("cannot write '" + path + "'");
+Status WritePolygonText(std::ostream& out, const PolygonData& polygon) {
   out.precision(17);
   for (size_t i = 0; i < polygon.vertices.size(); ++i) {
     const Vec3& p = polygon.vertices[i];
@@ -137,7 +236,20 @@ Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
     }
     out << '\n';
   }
-  return out ? OkStatus() : InvalidArgument("failed writing '" + path + "'");
+  return out ? OkStatus() : InvalidArgument("failed writing the polygon");
+}
+
+Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
+  std::ofstream out(path);
+  if (!out) {
+    return InvalidArgument("cannot write '" + path +
+                           "': " + std::strerror(errno));
+  }
+  if (!WritePolygonText(out, polygon).ok() || !out.flush()) {
+    return InvalidArgument("failed writing '" + path +
+                           "': " + std::strerror(errno));
+  }
+  return OkStatus();
 }
 
 namespace {

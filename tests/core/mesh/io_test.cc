@@ -56,6 +56,66 @@ TEST(IoTest, ObjPolylineOrderNegativeIndicesAndClosingIndex) {
   EXPECT_NE(s.message.find("index '7' is out of range"), std::string::npos);
 }
 
+TEST(IoTest, LoopRepeatingItsFirstPointHasTheRepeatDropped) {
+  std::vector<std::string> notes;
+  PolygonData p;
+  std::istringstream text(
+      "0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0 1\n"
+      "0 0 0 0 0 1\n");
+  ASSERT_TRUE(ReadPolygonText(text, &p, &notes).ok());
+  EXPECT_EQ(p.vertices.size(), 3u);
+  EXPECT_EQ(p.normals.size(), 3u);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("repeat of the first"), std::string::npos)
+      << notes[0];
+  // Idempotent: several repeats go, an open loop is left alone.
+  std::istringstream twice("0 0 0\n1 0 0\n1 1 0\n0 0 0\n0 0 0\n");
+  ASSERT_TRUE(ReadPolygonText(twice, &p).ok());
+  EXPECT_EQ(p.vertices.size(), 3u);
+  notes.clear();
+  std::istringstream open("0 0 0\n1 0 0\n1 1 0\n");
+  ASSERT_TRUE(ReadPolygonText(open, &p, &notes).ok());
+  EXPECT_EQ(p.vertices.size(), 3u);
+  EXPECT_TRUE(notes.empty());
+  // OBJ: a closing vertex with the first one's coordinates but its own index.
+  std::istringstream obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nl 1 2 3 4\n");
+  ASSERT_TRUE(ReadPolygonObj(obj, &p, &notes).ok());
+  EXPECT_EQ(p.vertices.size(), 3u);
+  EXPECT_EQ(notes.size(), 1u);
+}
+
+TEST(IoTest, ObjEdgePerLineIsChainedIntoTheLoop) {
+  // As Blender writes a loop: one "l a b" per edge, in any order and
+  // direction; the loop starts with the first edge, in its direction.
+  std::istringstream in(
+      "o Loop\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\n"
+      "l 2 3\nl 4 3\nl 1 2\nl 4 5\nl 5 1\n");
+  PolygonData p;
+  const Status s = ReadPolygonObj(in, &p);
+  ASSERT_TRUE(s.ok()) << s.message;
+  ASSERT_EQ(p.vertices.size(), 5u);
+  const std::vector<Vec3> want{
+      {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}, {0, 0, 0}};
+  EXPECT_EQ(p.vertices, want);
+
+  const auto refused = [](const std::string& text) {
+    std::istringstream bad(text);
+    PolygonData q;
+    return ReadPolygonObj(bad, &q).message;
+  };
+  const std::string four = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  EXPECT_NE(refused(four + "l 1 2\nl 2 3\nl 3 4\n")
+                .find("do not close into a loop: vertex 1 ends an open chain"),
+            std::string::npos);
+  EXPECT_NE(refused(four + "l 1 2\nl 2 3\nl 3 1\nl 2 4\nl 4 1\n")
+                .find("branch at vertex 1 (3 edges)"),
+            std::string::npos);
+  const std::string six = four + "v 2 0 0\nv 2 1 0\n";
+  EXPECT_NE(refused(six + "l 1 2\nl 2 4\nl 4 1\nl 3 5\nl 5 6\nl 6 3\n")
+                .find("more than one loop"),
+            std::string::npos);
+}
+
 TEST(IoTest, MeshRoundTripsThroughEveryFormat) {
   Problem prob{MakeCurve(Curve::kMonkey, 60), {}, {}};
   const Result r = Triangulate(prob);
