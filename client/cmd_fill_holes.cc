@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "exit_codes.h"
 #include "fill_call.h"
+#include "request_flags.h"
 #include "wire/wire.h"
 
 namespace dot::client {
@@ -31,7 +32,7 @@ struct FillFlags {
   double density = 0;
   int fairing_continuity = 1;
   bool no_repair = false, ascii = false;
-  bool json = false, local = false, quiet = false;
+  bool json = false, local = false;
   uint32_t time_budget_ms = 0;
 
   v1::FillOptions ToWire() const {
@@ -86,18 +87,14 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_option("--holes", f->holes, "only these hole ids, e.g. 3,7")
       ->delimiter(',')
       ->group("Which holes");
-  auto weight = [&](Metric m, const std::string& help) {
-    std::string flag(MetricName(m));
-    std::replace(flag.begin(), flag.end(), '_', '-');
-    cmd->add_option("--" + flag, f->weights[m], help)
-        ->group("Metric weights (default: --squared-dihedral 1 --area 0.01)");
-  };
-  weight(Metric::kArea, "area, per squared mean boundary edge length");
-  weight(Metric::kPerimeter, "perimeter, per mean boundary edge length");
-  weight(Metric::kNormalDeviation, "deviation from the surface normals");
-  weight(Metric::kShape, "triangle shape (0 equilateral, 1 flat)");
-  weight(Metric::kDihedral, "bending angle, the surrounding faces included");
-  weight(Metric::kSquaredDihedral, "squared bending angle (fair patches)");
+  AddWeightFlags(cmd, &f->weights,
+                 "Metric weights (default: --squared-dihedral 1 --area 0.01)",
+                 {"area, per squared mean boundary edge length",
+                  "perimeter, per mean boundary edge length",
+                  "deviation from the surface normals",
+                  "triangle shape (0 equilateral, 1 flat)",
+                  "bending angle, the surrounding faces included",
+                  "squared bending angle (fair patches)"});
   cmd->add_flag("--absolute-weights", f->absolute_weights,
                 "area and perimeter weights in the mesh's units, not per "
                 "hole scale")
@@ -117,7 +114,6 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                   "compute time allowed (0: the server's limit)");
   cmd->add_flag("--json", f->json, "the report as one JSON object on stdout");
   cmd->add_flag("--local", f->local, "fill in this process, no server");
-  cmd->add_flag("-q,--quiet", f->quiet, "no per-hole table");
 }
 
 std::string Format(const std::string& path, const std::string& fallback) {
@@ -206,7 +202,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       auto channel = ChannelOrReport(ctx);
       if (!channel) return;
       auto stub = v1::Triangulator::NewStub(channel);
-      const bool bar = isatty(STDERR_FILENO) && !f.quiet;
+      const bool bar = isatty(STDERR_FILENO) && !ctx->quiet;
       o = FillRemote(*stub, f.input, f.ToWire(), soup,
                      ctx->connection.timeout_s,
                      [bar](const v1::FillProgress& p) {
@@ -238,8 +234,8 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       std::cerr << "dotctl: " << f.input << ": "
                 << wire::GrpcCodeName(o.status.error_code()) << ": "
                 << o.status.error_message() << "\n";
-    } else {
-      if (!f.quiet && out != "-") PrintTable(o.report);
+    } else if (!ctx->quiet) {  // -q: errors only
+      if (out != "-") PrintTable(o.report);
       const v1::FillReport& r = o.report;
       text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
            << " holes filled"

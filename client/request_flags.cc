@@ -8,23 +8,28 @@
 
 namespace dot::client {
 
-void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
-  auto weight = [&](Metric m, const std::string& help) {
+void AddWeightFlags(CLI::App* cmd, MetricWeights* weights,
+                    const std::string& group,
+                    const std::array<std::string, kMetricCount>& help) {
+  for (Metric m : kAllMetrics) {
     std::string flag(MetricName(m));  // squared_dihedral -> --squared-dihedral
     std::replace(flag.begin(), flag.end(), '_', '-');
-    cmd->add_option("--" + flag, f->weights[m], help)
-        ->group("Metric weights (default: --area 1)");
-  };
-  weight(Metric::kArea, "weight of triangle area (minimal surfaces)");
-  weight(Metric::kPerimeter, "weight of triangle perimeter");
-  weight(Metric::kNormalDeviation,
-         "weight of deviation from the boundary normals (needs normals in "
-         "the input)");
-  weight(Metric::kShape, "weight of triangle shape (0 equilateral, 1 flat)");
-  weight(Metric::kDihedral, "weight of the bending angle between triangles");
-  weight(Metric::kSquaredDihedral,
-         "weight of the squared bending angle (fair surfaces); negative "
-         "maximizes twisting");
+    cmd->add_option("--" + flag, (*weights)[m], help[static_cast<int>(m)])
+        ->group(group);
+  }
+}
+
+void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
+  AddWeightFlags(
+      cmd, &f->weights, "Metric weights (default: --area 1)",
+      {"weight of triangle area (minimal surfaces)",
+       "weight of triangle perimeter",
+       "weight of deviation from the boundary normals (needs normals in the "
+       "input)",
+       "weight of triangle shape (0 equilateral, 1 flat)",
+       "weight of the bending angle between triangles",
+       "weight of the squared bending angle (fair surfaces); negative "
+       "maximizes twisting"});
   cmd->add_option("--space", f->space,
                   "search space: auto (Delaunay, then all triangles for small "
                   "polygons), delaunay (never self-intersects), all (GK, may "

@@ -6,6 +6,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -32,6 +33,11 @@ struct RequestFlags {
   v1::Options ToOptions() const;
 };
 void AddRequestFlags(CLI::App* cmd, RequestFlags* flags);
+// --area, --perimeter, ... bound to `weights`, with a help text per metric
+// (in Metric order) under `group`.
+void AddWeightFlags(CLI::App* cmd, MetricWeights* weights,
+                    const std::string& group,
+                    const std::array<std::string, kMetricCount>& help);
 
 struct ConnectionFlags {
   std::string server = "localhost:50051";

@@ -46,9 +46,10 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   EXPECT_NE(r.out.find("4 of 4 holes filled, closed"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find(" hole edges  status"), std::string::npos) << r.out;
-  r = Dotctl("fill-holes --local " + Path("holey.off") + " -o " +
+  r = Dotctl("fill-holes --local " + Path("holey.off") + " -q -o " +
              Path("local.ply"));
   ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out, "");  // -q: errors only
   MeshData remote, local, holey;
   ASSERT_TRUE(ReadMeshFile(Path("remote.ply"), &remote).ok());
   ASSERT_TRUE(ReadMeshFile(Path("local.ply"), &local).ok());
@@ -106,7 +107,7 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
   // A selection that leaves nothing: every selected hole filled, exit 0,
   // but the mesh stays open.
   r = Dotctl("fill-holes --local " + Path("holey.off") +
-             " --max-hole-edges 3 -q -o " + Path("same.off"));
+             " --max-hole-edges 3 -o " + Path("same.off"));
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("0 of 0 holes filled (2 skipped), still open"),
             std::string::npos)
