@@ -13,6 +13,12 @@
 
 #include "suite.h"
 
+namespace dot::bench {
+// Hole filling against CGAL 5.5 (fig_fill.cc): validates every dot output
+// and returns how many were defective.
+int RunFill(const Config& config, std::ostream& report);
+}  // namespace dot::bench
+
 int main(int argc, char** argv) {
   dot::bench::Config config;
   config.mesh_dir = DOT_MESH_DIR;
@@ -36,9 +42,9 @@ int main(int argc, char** argv) {
   app.add_option("--mesh-dir", config.mesh_dir, "libcgal-demo data/meshes")
       ->capture_default_str();
   app.add_option("--only", only,
-                 "run only these: curves, holes, gk, optimality, service")
-      ->check(
-          CLI::IsMember({"curves", "holes", "gk", "optimality", "service"}));
+                 "run only these: curves, holes, gk, optimality, service, fill")
+      ->check(CLI::IsMember(
+          {"curves", "holes", "gk", "optimality", "service", "fill"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);
@@ -54,6 +60,7 @@ int main(int argc, char** argv) {
   if (wanted("gk")) dot::bench::RunGk(config, body);
   if (wanted("optimality")) dot::bench::RunOptimality(config, body);
   if (wanted("service")) dot::bench::RunService(config, body);
+  if (wanted("fill")) invalid += dot::bench::RunFill(config, body);
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count() /
