@@ -18,6 +18,7 @@
 #include "polygon/unit_scale.h"
 #include "search_space/all_triangles.h"
 #include "search_space/delaunay3d.h"
+#include "search_space/delaunay_cgal.h"
 #include "search_space/forbidden_edges.h"
 #include "search_space/planar_cdt.h"
 #include "search_space/prepared_space.h"
@@ -250,11 +251,19 @@ Result Triangulate(const Problem& problem, const Options& options,
     }
   }
   const PlaneFit fit = FitPlane(work);
-  r.status = CheckNotCollinear(fit, static_cast<int>(problem.vertices.size()),
-                               options);
+  // The fit decides within the tolerance, its rounding included; exactly
+  // collinear or planar polygons are so whatever the rounding (at a
+  // tolerance of 0 a planar one went on to the 3D Delaunay step: refused by
+  // CGAL as coplanar, an abort in TetGen).
+  const int dimension = AffineDimension(work);
+  PlaneFit line_fit = fit;
+  if (dimension <= 1) line_fit.max_line_distance = 0;
+  r.status = CheckNotCollinear(
+      line_fit, static_cast<int>(problem.vertices.size()), options);
   if (!r.status.ok()) return r;
   r.delaunay = options.delaunay;
-  r.planar = fit.max_plane_distance <= options.planar_tolerance * fit.diagonal;
+  r.planar = dimension == 2 ||
+             fit.max_plane_distance <= options.planar_tolerance * fit.diagonal;
   MetricWeights weights = problem.weights;
   if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
   const MetricWeights work_weights = WorkWeights(weights, scale);

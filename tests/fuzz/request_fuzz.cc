@@ -23,6 +23,8 @@
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.pb.h"
+#include "google/protobuf/stubs/logging.h"
+#include "tetgen_child.h"
 #include "wire/wire.h"
 
 namespace v1 = dot::v1;
@@ -100,6 +102,12 @@ void CheckResponse(const v1::TriangulateRequest& request,
 
 }  // namespace
 
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  // Invalid UTF-8 in a string field is a parse failure, logged each time.
+  google::protobuf::SetLogHandler(nullptr);
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   v1::TriangulateRequest request;
   if (!request.ParseFromArray(data, static_cast<int>(size))) return 0;
@@ -133,6 +141,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (!(fraction >= 0 && fraction <= 1)) Fail("progress out of [0, 1]");
     };
   }
+  // TetGen runs in a child process, as in dot-server's default helpers.
+  control.tetrahedralize = dot::fuzz::TetgenInChild;
   dot::SpaceCache cache(int64_t{16} << 20);
   if (!request.options().no_cache()) control.space_cache = &cache;
 

@@ -10,12 +10,14 @@
 //    in place), consistently oriented so that the polygon runs i -> i+1, the
 //    input's vertices returned unchanged; intersection-free unless the
 //    search space was explicitly kAll, whose intersecting pairs must then be
-//    counted right; its costs are finite;
+//    counted right; its total cost is finite when its weighted metrics
+//    are (metrics may overflow in the caller's units), and no cost is NaN;
 //  - a failure is a known non-OK code with a message;
 //  - progress fractions stay in [0, 1];
 //  - solved again through a SpaceCache (the second call served from it),
 //    an OK answer is the same triangles at the same cost.
-// A violated oracle abort()s, which libFuzzer reports as a crash.
+// A violated oracle abort()s, which libFuzzer reports as a crash. TetGen
+// runs in a child process, as dot-server runs it (tetgen_child.h).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -31,18 +33,58 @@
 #include <vector>
 
 #include "dot/dot.h"
+#include "tetgen_child.h"
 
 namespace {
 
+// What is being solved, printed when the oracle fails.
+const dot::Problem* g_problem = nullptr;
+const dot::Options* g_options = nullptr;
+
+void PrintInput() {
+  if (g_problem == nullptr || g_options == nullptr) return;
+  std::fprintf(stderr, "polygon (x y z [nx ny nz]):\n");
+  for (size_t i = 0; i < g_problem->vertices.size(); ++i) {
+    const dot::Vec3& p = g_problem->vertices[i];
+    std::fprintf(stderr, "  %.17g %.17g %.17g", p.x, p.y, p.z);
+    if (!g_problem->normals.empty()) {
+      const dot::Vec3& n = g_problem->normals[i];
+      std::fprintf(stderr, "  %g %g %g", n.x, n.y, n.z);
+    }
+    std::fprintf(stderr, "\n");
+  }
+  std::fprintf(stderr, "weights:");
+  for (dot::Metric m : dot::kAllMetrics) {
+    std::fprintf(stderr, " %s=%.17g", std::string(dot::MetricName(m)).c_str(),
+                 g_problem->weights[m]);
+  }
+  std::fprintf(
+      stderr,
+      "\noptions: space=%s delaunay=%s protect_edges=%d "
+      "validate_output=%d planar_tolerance=%g\n",
+      std::string(dot::SearchSpaceName(g_options->space)).c_str(),
+      std::string(dot::DelaunayBackendName(g_options->delaunay)).c_str(),
+      g_options->protect_edges, g_options->validate_output,
+      g_options->planar_tolerance);
+}
+
 [[noreturn]] void Fail(const std::string& what, const dot::Result& r) {
   std::fprintf(stderr,
-               "ORACLE FAILED: %s (status %s: %s; space %s, %zu "
-               "triangles)\n",
+               "ORACLE FAILED: %s (status %s: %s; space %s, solver %s, %zu "
+               "triangles, total cost %.17g)\n",
                what.c_str(),
                std::string(dot::StatusCodeName(r.status.code)).c_str(),
                r.status.message.c_str(),
                std::string(dot::SpaceUsedName(r.space_used)).c_str(),
-               r.triangles.size());
+               std::string(dot::SolverName(r.solver)).c_str(),
+               r.triangles.size(), r.total_cost);
+  std::fprintf(stderr, "metric costs:");
+  for (dot::Metric m : dot::kAllMetrics) {
+    std::fprintf(stderr, " %s=%.17g", std::string(dot::MetricName(m)).c_str(),
+                 r.metric_costs[m]);
+  }
+  std::fprintf(stderr, "\n");
+  PrintInput();
   std::abort();
 }
 
@@ -167,9 +209,19 @@ void CheckOk(const dot::Problem& problem, const dot::Options& options,
            r);
     }
   }
-  if (!std::isfinite(r.total_cost)) Fail("non-finite total cost", r);
-  for (double c : r.metric_costs.v) {
-    if (!std::isfinite(c)) Fail("non-finite metric cost", r);
+  // Costs are in the caller's units, where a metric may overflow (the area
+  // of a polygon spanning 1e200); but when every weighted one is finite, so
+  // is the total, or the call refuses the weights.
+  dot::MetricWeights weights = problem.weights;
+  if (!dot::HasNonZeroWeight(weights)) weights[dot::Metric::kArea] = 1;
+  bool weighted_finite = true;
+  for (dot::Metric m : dot::kAllMetrics) {
+    if (std::isnan(r.metric_costs[m])) Fail("NaN metric cost", r);
+    weighted_finite &= weights[m] == 0 || std::isfinite(r.metric_costs[m]);
+  }
+  if (std::isnan(r.total_cost)) Fail("NaN total cost", r);
+  if (weighted_finite && !std::isfinite(r.total_cost)) {
+    Fail("non-finite total cost of finite weighted metrics", r);
   }
 }
 
@@ -221,21 +273,36 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     default:
       break;  // the default, 1e-6
   }
-  options.max_inserted_vertices = 200;
+  options.max_inserted_vertices = 64;
   const bool via_cache = in.ConsumeIntegralInRange(0, 3) == 0;
 
+  g_problem = &problem;
+  g_options = &options;
   dot::Control control;
   control.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(4);
   control.progress = [](dot::Stage, double fraction) {
     if (!(fraction >= 0 && fraction <= 1)) {
       std::fprintf(stderr, "ORACLE FAILED: progress fraction %g\n", fraction);
+      PrintInput();
       std::abort();
     }
   };
   dot::SpaceCache cache(int64_t{64} << 20);
   if (via_cache) control.space_cache = &cache;
+  // TetGen in a child process, as dot-server's helpers run it: TetGen
+  // 1.5.0 aborts on some degenerate point sets (see tetgen_child.h).
+  control.tetrahedralize = dot::fuzz::TetgenInChild;
 
   dot::Result r = dot::Triangulate(problem, options, control);
+  // DOT_FUZZ_PRINT=1 (running one input): what was solved, and the answer.
+  static const bool print = std::getenv("DOT_FUZZ_PRINT") != nullptr;
+  if (print) {
+    PrintInput();
+    std::fprintf(stderr, "-> %s: %s (%zu triangles, %zu inserted)\n",
+                 std::string(dot::StatusCodeName(r.status.code)).c_str(),
+                 r.status.message.c_str(), r.triangles.size(),
+                 r.inserted.size());
+  }
   if (r.status.ok()) {
     CheckOk(problem, options, r);
   } else {

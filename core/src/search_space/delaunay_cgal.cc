@@ -287,4 +287,25 @@ Status CgalDelaunayFaces(const std::vector<Vec3>& points,
   }
 }
 
+int AffineDimension(const std::vector<Vec3>& points) {
+  auto point = [&](size_t i) {
+    return Kernel::Point_3(points[i].x, points[i].y, points[i].z);
+  };
+  size_t i = 1;
+  while (i < points.size() && point(i) == point(0)) ++i;
+  if (i == points.size()) return 0;
+  const size_t second = i;
+  while (i < points.size() &&
+         CGAL::collinear(point(0), point(second), point(i))) {
+    ++i;
+  }
+  if (i == points.size()) return 1;
+  const size_t third = i;
+  while (i < points.size() &&
+         CGAL::coplanar(point(0), point(second), point(third), point(i))) {
+    ++i;
+  }
+  return i == points.size() ? 2 : 3;
+}
+
 }  // namespace dot

@@ -32,6 +32,10 @@ inline Status CgalDelaunayFaces(const std::vector<Vec3>& points,
   return CgalDelaunayFaces(points, Options(), control, faces, tetrahedra);
 }
 
+// The dimension of the affine hull of `points` (0: one point, 1: a line,
+// 2: a plane, 3: space), decided with exact predicates.
+int AffineDimension(const std::vector<Vec3>& points);
+
 }  // namespace dot
 
 #endif  // DOT_CORE_SEARCH_SPACE_DELAUNAY_CGAL_H_

@@ -137,5 +137,103 @@ TEST(UnitScaleTest, OverflowingWeightedSumsAreRefused) {
               Triangulate({polygon, {}, Only(Metric::kArea)}).total_cost, 1e-9);
 }
 
+// Found by tests/fuzz/triangulate_fuzz: at 1e200 the (unweighted) area
+// overflows in the caller's units, which hid the overflow of the weighted
+// perimeter: OK with an infinite total cost.
+TEST(UnitScaleTest, OverflowIsRefusedWhenAnUnweightedMetricOverflows) {
+  const auto polygon = Scaled(MakeCurve(Curve::kMonkey, 30), 1e200);
+  MetricWeights weights;
+  weights[Metric::kPerimeter] = 1e200;
+  const Result r = Triangulate({polygon, {}, weights});
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status.message.find("overflows"), std::string::npos);
+  // With a weight that fits, the answer stands: the area is just too large
+  // for a double.
+  const Result fine = Triangulate({polygon, {}, Only(Metric::kPerimeter)});
+  ASSERT_TRUE(fine.status.ok()) << fine.status.message;
+  EXPECT_TRUE(std::isfinite(fine.total_cost));
+  EXPECT_TRUE(std::isinf(fine.metric_costs[Metric::kArea]));
+  // Two weighted metrics overflowing with opposite signs: no total at all
+  // (it was OK with a NaN cost).
+  MetricWeights opposite;
+  opposite[Metric::kArea] = 1;
+  opposite[Metric::kPerimeter] = -1e200;
+  const Result nan = Triangulate({polygon, {}, opposite});
+  EXPECT_EQ(nan.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(nan.status.message.find("overflows"), std::string::npos);
+}
+
+// Found by tests/fuzz/triangulate_fuzz: scaling into the unit range pushed
+// tiny coordinates below the normal range, so the solver decided another
+// polygon than the caller's (its count of intersecting pairs, 4, was not
+// the caller's polygon's, 2). Such polygons are refused by vertex.
+TEST(UnitScaleTest, CoordinatesThatWouldLosePrecisionAreRefused) {
+  const std::vector<Vec3> wide = {
+      {-3.5976964249515829e-47, 1.5764348338827278e-312,
+       2.9230032746618058e+48},
+      {0, 5.3049894774131808e-315, 0},
+      {0, 0, 2},
+      {0, 0, 0},
+      {3.4090529563046012e-322, 4.2510976414123851e+228,
+       3.6028862992780596e+252},
+      {9.267953447431126e+199, 4.3967344908398287e+199,
+       1.4944621914822201e-76}};
+  Options all;
+  all.space = SearchSpace::kAll;
+  all.planar_tolerance = 0;  // at 1e-6 it is collinear by tolerance
+  const Result r = Triangulate({wide, {}, {}}, all);
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  EXPECT_EQ(r.status.message.rfind("vertex 0 ", 0), 0u) << r.status.message;
+  // A subnormal coordinate next to ordinary ones, scaled down by 2^-3: its
+  // low bits would be lost (and are not when they are zero).
+  const double subnormal = std::ldexp(7.0, -1074);
+  const Result sub = Triangulate(
+      {{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {subnormal, 4, 0}}, {}, {}});
+  EXPECT_EQ(sub.status.code, StatusCode::kInvalidArgument);
+  EXPECT_EQ(sub.status.message.rfind("vertex 3 ", 0), 0u) << sub.status.message;
+  const Result kept = Triangulate(
+      {{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {8 * subnormal, 4, 0}}, {}, {}});
+  EXPECT_TRUE(kept.status.ok()) << kept.status.message;
+  // Scaling up is always exact: subnormal polygons are fine.
+  const Result tiny = Triangulate(
+      {{{0, 0, 0}, {4e-320, 0, 0}, {4e-320, 4e-320, 1e-320}, {0, 4e-320, 0}},
+       {},
+       {}});
+  EXPECT_TRUE(tiny.status.ok()) << tiny.status.message;
+}
+
+// Found by tests/fuzz/triangulate_fuzz: at the bottom of the subnormal
+// range, a vertex inserted by edge protection (a midpoint) rounded on its
+// way back to the caller's coordinates, and the mesh returned OK
+// self-intersected there. Such a result is refused; two bits higher it is
+// exact and valid.
+TEST(UnitScaleTest, InsertedVerticesTheCallerCannotHoldAreRefused) {
+  const int units[8][3] = {{-3, 0, -3}, {-2, 3, 0}, {-1, -2, 3}, {-3, 2, 0},
+                           {1, 3, 2},   {1, 0, 2},  {1, 0, 0},   {1, 1, -2}};
+  Options protect;
+  protect.protect_edges = true;
+  for (int exponent : {-1074, -1072}) {
+    std::vector<Vec3> polygon;
+    for (const auto& u : units) {
+      polygon.push_back({std::ldexp(u[0], exponent), std::ldexp(u[1], exponent),
+                         std::ldexp(u[2], exponent)});
+    }
+    const Result r = Triangulate({polygon, {}, {}}, protect);
+    if (exponent == -1074) {
+      EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+      EXPECT_EQ(r.status.message.rfind("edge protection inserted vertex", 0),
+                0u)
+          << r.status.message;
+      EXPECT_TRUE(r.triangles.empty());
+    } else {
+      ASSERT_TRUE(r.status.ok()) << r.status.message;
+      EXPECT_FALSE(r.inserted.empty());
+      const MeshReport report =
+          ValidateMesh(r.vertices, r.polygon, r.triangles);
+      EXPECT_TRUE(report.valid()) << report.first_problem;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dot

@@ -116,6 +116,32 @@ TEST(DelaunayBackendsTest, ResultReportsTheBackendUsed) {
   EXPECT_FALSE(ParseDelaunayBackend("qhull", &parsed));
 }
 
+// Found by tests/fuzz/request_fuzz: a coordinate at the bottom of the
+// double range (2^-1022 next to 4) underflows TetGen's predicates, and with
+// edge protection the "Delaunay" patch self-intersected, answered OK.
+// TetGen now refuses what it cannot decide exactly; CGAL decides it.
+TEST(DelaunayBackendsTest, TetgenRefusesCoordinatesItsPredicatesUnderflowOn) {
+  DOT_SKIP_WITHOUT_TETGEN();
+  const std::vector<Vec3> polygon = {{0, 0, 0},
+                                     {4.00390625, 0, 0},
+                                     {4, 6.103515625e-05, 1.0000000000000553},
+                                     {0x1p-1022, 4, 0},
+                                     {2, 2, 3.04541015625},
+                                     {1, 3, -2},
+                                     {3, 1.0000009536743162, 2}};
+  Options o;
+  o.space = SearchSpace::kDelaunay;
+  o.protect_edges = true;
+  o.delaunay = DelaunayBackend::kTetgen;
+  const Result tetgen = Triangulate({polygon, {}, {}}, o);
+  EXPECT_EQ(tetgen.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(tetgen.status.message.find("use the cgal backend"),
+            std::string::npos)
+      << tetgen.status.message;
+  o.delaunay = DelaunayBackend::kCgal;
+  testing::ExpectValidDisk(Triangulate({polygon, {}, {}}, o));
+}
+
 // Without TetGen (DOT_WITH_TETGEN=OFF) CGAL is the only backend: TetGen
 // requests are refused with a message that says what to use instead.
 TEST(DelaunayBackendsTest, BuildWithoutTetgenRefusesItClearly) {

@@ -95,6 +95,33 @@ TEST(PlanarTest, TiltedAndNoisyPlanesStayPlanar) {
   }
 }
 
+// Found by tests/fuzz/triangulate_fuzz: with planar_tolerance 0, the plane
+// fit's rounding made this exactly planar quadrilateral non-planar, so it
+// went to the 3D Delaunay step (CGAL refused it as coplanar, TetGen crashed
+// the process). Exact predicates now decide exact planarity and
+// collinearity, whatever the tolerance.
+TEST(PlanarTest, ExactlyPlanarIsPlanarAtZeroTolerance) {
+  const std::vector<Vec3> quad = {
+      {-3, -2, 3}, {-1, -3, 3}, {-2, -3, 0}, {-3, -3, -3}};
+  Options exact;
+  exact.planar_tolerance = 0;
+  for (DelaunayBackend b : {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
+    if (b == DelaunayBackend::kTetgen && !TetgenAvailable()) continue;
+    exact.delaunay = b;
+    const Result r = Triangulate({quad, {}, {}}, exact);
+    ExpectValidDisk(r);
+    EXPECT_TRUE(r.planar);
+    EXPECT_EQ(r.space_used, SpaceUsed::kPlanarDelaunay2d);
+  }
+  // Exactly collinear: refused as such (it was "coplanar", from CGAL).
+  const std::vector<Vec3> line = {
+      {1, 2, 3}, {4, 7, 10}, {7, 12, 17}, {10, 17, 24}};
+  const Result r = Triangulate({line, {}, {}}, exact);
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status.message.find("collinear"), std::string::npos)
+      << r.status.message;
+}
+
 TEST(PlanarTest, SelfIntersectingPlanarPolygonIsRejected) {
   // A bow tie: edges 1-2 and 3-0 cross.
   const std::vector<Vec3> bowtie = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
