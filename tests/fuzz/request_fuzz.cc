@@ -141,7 +141,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (!(fraction >= 0 && fraction <= 1)) Fail("progress out of [0, 1]");
     };
   }
-  // TetGen runs in a child process, as in dot-server's default helpers.
+  // TetGen runs in a helper process, as in dot-server (its default).
   control.tetrahedralize = dot::fuzz::TetgenInChild;
   dot::SpaceCache cache(int64_t{16} << 20);
   if (!request.options().no_cache()) control.space_cache = &cache;

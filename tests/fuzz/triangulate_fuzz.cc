@@ -17,7 +17,7 @@
 //  - solved again through a SpaceCache (the second call served from it),
 //    an OK answer is the same triangles at the same cost.
 // A violated oracle abort()s, which libFuzzer reports as a crash. TetGen
-// runs in a child process, as dot-server runs it (tetgen_child.h).
+// runs in a helper process, as dot-server runs it (tetgen_child.h).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -289,7 +289,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   };
   dot::SpaceCache cache(int64_t{64} << 20);
   if (via_cache) control.space_cache = &cache;
-  // TetGen in a child process, as dot-server's helpers run it: TetGen
+  // TetGen in a helper process, as dot-server runs it: TetGen
   // 1.5.0 aborts on some degenerate point sets (see tetgen_child.h).
   control.tetrahedralize = dot::fuzz::TetgenInChild;
 
