@@ -248,6 +248,7 @@ struct LoadRun {
   std::vector<PolygonData> polygons;
   std::vector<v1::TriangulateRequest> requests;                // as they are
   std::vector<std::unique_ptr<v1::Triangulator::Stub>> stubs;  // remote only
+  std::unique_ptr<DelaunayHelperPool> helpers;                 // local only
   double timeout_s = 0;
   Clock::time_point start, end;
   std::atomic<int> next{0};  // the next request to send
@@ -293,7 +294,7 @@ void CallWorker(LoadRun& run, int w) {
     std::vector<Vec3> input;
     const auto request = run.RequestFor(i, &input);
     const CallOutcome out =
-        run.flags.local ? TriangulateLocal(request)
+        run.flags.local ? TriangulateLocal(request, run.helpers.get())
                         : TriangulateRemote(*run.stubs[w % run.stubs.size()],
                                             request, input, run.timeout_s);
     PrintVerbose(run.ctx,
@@ -400,6 +401,7 @@ void RunLoad(LoadFlags& f, Context* ctx) {
                                              run.polygons[i], f.request.weights,
                                              f.request.ToOptions()));
   }
+  if (f.local) run.helpers = LocalDelaunayHelpers(f.concurrency);
   for (int c = 0; c < f.channels && !f.local; ++c) {
     auto channel = ChannelOrReport(ctx);
     if (!channel) return;

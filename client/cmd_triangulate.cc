@@ -406,10 +406,13 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
     std::ostream& text = mesh_to_stdout ? std::cerr : std::cout;
     std::shared_ptr<grpc::Channel> channel;
     std::unique_ptr<v1::Triangulator::Stub> stub;
+    std::unique_ptr<DelaunayHelperPool> helpers;
     if (!flags->local) {
       channel = ChannelOrReport(ctx);
       if (!channel) return;
       stub = v1::Triangulator::NewStub(channel);
+    } else {
+      helpers = LocalDelaunayHelpers(1);
     }
     v1::Options options = flags->request.ToOptions();
     if (flags->progress) options.set_progress_interval_ms(250);
@@ -470,7 +473,7 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
       const auto request =
           wire::MakeRequest(file, polygon, flags->request.weights, options);
       out = flags->local
-                ? TriangulateLocal(request)
+                ? TriangulateLocal(request, helpers.get())
                 : TriangulateRemote(
                       *stub, request, polygon.vertices,
                       ctx->connection.timeout_s, [](const v1::Progress& p) {

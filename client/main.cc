@@ -2,10 +2,12 @@
 // dotctl: command-line client of dot-server (and of the core, with --local).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstring>
 #include <iostream>
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "remote_call.h"
 
 namespace {
 
@@ -69,6 +71,12 @@ bool ReportUnknownCommand(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Started by dotctl itself (--local with TetGen): a Delaunay helper.
+  if (argc >= 2 &&
+      std::strcmp(argv[1], dot::client::kDelaunayHelperArgument) == 0) {
+    return dot::DelaunayHelperMain("dotctl --delaunay-helper", argc - 1,
+                                   argv + 1);
+  }
   CLI::App app{
       "dotctl: optimal, intersection-free triangulation of 3D polygons.\n"
       "Talks to a dot-server (--server, or DOT_SERVER), or runs the core "

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "wire/wire.h"
@@ -57,15 +58,28 @@ CallOutcome TriangulateRemote(
   return out;
 }
 
-CallOutcome TriangulateLocal(const v1::TriangulateRequest& request) {
+CallOutcome TriangulateLocal(const v1::TriangulateRequest& request,
+                             DelaunayHelperPool* helpers) {
   const auto t0 = Clock::now();
   CallOutcome out;
   Problem problem;
   Options options;
   Status s = wire::ProblemFromRequest(request, &problem, &options);
+  Control control;
+  if (request.options().time_budget_ms() > 0) {
+    control.deadline =
+        t0 + std::chrono::milliseconds(request.options().time_budget_ms());
+  }
+  if (helpers != nullptr) {
+    control.tetrahedralize = [&](const std::vector<Vec3>& points,
+                                 Tetrahedralization* t) {
+      return helpers->Tetrahedralize(points, t, nullptr, control.deadline,
+                                     options.memory_budget_bytes);
+    };
+  }
   Result r;
   if (s.ok()) {
-    r = Triangulate(problem, options);
+    r = Triangulate(problem, options, control);
     s = r.status;
   }
   if (s.ok() || s.code == StatusCode::kNoTriangulation) {
@@ -77,6 +91,18 @@ CallOutcome TriangulateLocal(const v1::TriangulateRequest& request) {
   }
   out.latency_ms = MsSince(t0);
   return out;
+}
+
+std::unique_ptr<DelaunayHelperPool> LocalDelaunayHelpers(int count) {
+  if (!TetgenAvailable()) return nullptr;
+  DelaunayHelperOptions helpers;
+  helpers.count = count;
+  // This dotctl, whatever its path (named by it in TetGen's messages).
+  std::error_code ec;
+  helpers.executable = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) helpers.executable = "/proc/self/exe";
+  helpers.arguments = {kDelaunayHelperArgument};
+  return std::make_unique<DelaunayHelperPool>(std::move(helpers));
 }
 
 std::string DescribeOutcome(const CallOutcome& o) {

@@ -7,9 +7,11 @@
 #include <grpcpp/grpcpp.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "dot/delaunay_helpers.h"
 #include "dot/dot.h"
 #include "dot/v1/triangulation.grpc.pb.h"
 
@@ -27,7 +29,16 @@ CallOutcome TriangulateRemote(
     const std::vector<Vec3>& input, double timeout_s,
     const std::function<void(const v1::Progress&)>& on_progress = nullptr);
 
-CallOutcome TriangulateLocal(const v1::TriangulateRequest& request);
+// The core in this process, with the request's time and memory budgets.
+// With `helpers`, TetGen runs in them (as in dot-server): TetGen 1.5 aborts
+// on some degenerate inputs, which must fail the call, not dotctl.
+CallOutcome TriangulateLocal(const v1::TriangulateRequest& request,
+                             DelaunayHelperPool* helpers);
+// `count` TetGen helper processes, each dotctl itself in its helper mode
+// (kDelaunayHelperArgument); null in a build without TetGen.
+std::unique_ptr<DelaunayHelperPool> LocalDelaunayHelpers(int count);
+// dotctl's first argument that makes it a Delaunay helper process.
+inline constexpr const char* kDelaunayHelperArgument = "--delaunay-helper";
 
 // "ok: 98 triangles, DOT2 over delaunay3d, cost ..." for people.
 std::string DescribeOutcome(const CallOutcome& outcome);

@@ -193,7 +193,7 @@ std::string FinalizeConfig(ServerConfig* c) {
     c->pool.threads =
         static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   }
-  HelperOptions& h = c->helpers;
+  DelaunayHelperOptions& h = c->helpers;
   if (!TetgenAvailable()) {
     h.count = 0;
     if (c->service.solve.delaunay == DelaunayBackend::kTetgen) {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "compute/compute_pool.h"
-#include "compute/delaunay_helpers.h"
+#include "dot/delaunay_helpers.h"
 #include "rpc/service_options.h"
 #include "server_metrics.h"
 
@@ -30,7 +30,7 @@ struct ServerConfig {
   std::string listen = "0.0.0.0:50051";
   ServiceOptions service;
   ComputePoolOptions pool;
-  HelperOptions helpers;
+  DelaunayHelperOptions helpers;
   MetricsOptions metrics;
   TlsOptions tls;
   int64_t cache_bytes = int64_t{256} << 20;  // search-space cache; 0: off

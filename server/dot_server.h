@@ -13,7 +13,7 @@
 #include <string>
 
 #include "compute/compute_pool.h"
-#include "compute/delaunay_helpers.h"
+#include "dot/delaunay_helpers.h"
 #include "config.h"
 #include "rpc/job.h"
 #include "rpc/triangulator_service.h"

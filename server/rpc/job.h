@@ -18,7 +18,7 @@
 #include <string>
 
 #include "compute/compute_pool.h"
-#include "compute/delaunay_helpers.h"
+#include "dot/delaunay_helpers.h"
 #include "dot/space_cache.h"
 #include "dot/triangulate.h"
 #include "dot/v1/triangulation.pb.h"

@@ -11,8 +11,8 @@
 //             request; 0: its own cap only), uint64 n, then n * 3 doubles
 //   response: int32 status code, uint32 message length, message bytes,
 //             uint64 t, then t * 4 int32 corners and t * 4 int32 neighbours
-#ifndef DOT_SERVER_DELAUNAY_HELPERS_H_
-#define DOT_SERVER_DELAUNAY_HELPERS_H_
+#ifndef DOT_DELAUNAY_HELPERS_H_
+#define DOT_DELAUNAY_HELPERS_H_
 
 #include <sys/types.h>
 
@@ -26,7 +26,7 @@
 
 #include "dot/triangulate.h"
 
-namespace dot::server {
+namespace dot {
 
 // AddressSanitizer reserves terabytes of shadow address space, so an
 // RLIMIT_AS cap would make its every mmap fail: sanitizer builds run the
@@ -37,12 +37,16 @@ inline constexpr bool kCanCapAddressSpace = false;
 inline constexpr bool kCanCapAddressSpace = true;
 #endif
 
-struct HelperOptions {
+struct DelaunayHelperOptions {
   // Helper processes; -1: one per compute thread, 0: TetGen in-process
   // (serialized) instead.
   int count = -1;
-  // The dot-delaunay-helper binary; empty: next to the running binary.
+  // The helper binary (dot-delaunay-helper, or any program whose main
+  // calls DelaunayHelperMain); empty: next to the running binary.
   std::string executable;
+  // Arguments before --memory-limit-bytes (a program that is also its own
+  // helper, such as dotctl, selects the helper mode with one).
+  std::vector<std::string> arguments;
   // Address-space limit of each helper (setrlimit).
   int64_t memory_limit_bytes = int64_t{4} << 30;
 };
@@ -50,7 +54,7 @@ struct HelperOptions {
 class DelaunayHelperPool {
  public:
   // `options` resolved: count > 0, executable set.
-  explicit DelaunayHelperPool(HelperOptions options);
+  explicit DelaunayHelperPool(DelaunayHelperOptions options);
   ~DelaunayHelperPool();  // kills the helpers
   DelaunayHelperPool(const DelaunayHelperPool&) = delete;
   DelaunayHelperPool& operator=(const DelaunayHelperPool&) = delete;
@@ -84,17 +88,22 @@ class DelaunayHelperPool {
                   const std::atomic<bool>* cancel,
                   std::chrono::steady_clock::time_point deadline);
 
-  const HelperOptions config_;
+  const DelaunayHelperOptions config_;
   mutable std::mutex mu_;
   std::condition_variable free_;
   std::vector<Helper> helpers_;
   std::atomic<int64_t> starts_{0};
 };
 
-// The helper process's main loop: serve requests from `in_fd` until EOF.
-// Only in builds with TetGen (DOT_WITH_TETGEN).
+// The helper process's main loop: serve requests from `in_fd` until EOF
+// (in a build without TetGen, each answered kInvalidArgument).
 int RunDelaunayHelper(int in_fd, int out_fd);
 
-}  // namespace dot::server
+// A helper program's main: caps its address space as its arguments say
+// ([--memory-limit-bytes N]), then serves stdin/stdout. `program` names it
+// in the usage message.
+int DelaunayHelperMain(const char* program, int argc, char** argv);
 
-#endif  // DOT_SERVER_DELAUNAY_HELPERS_H_
+}  // namespace dot
+
+#endif  // DOT_DELAUNAY_HELPERS_H_

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-#include "compute/delaunay_helpers.h"
+#include "dot/delaunay_helpers.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -10,13 +10,15 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <new>
 
 extern char** environ;
 
-namespace dot::server {
+namespace dot {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -52,7 +54,6 @@ bool ReadAll(int fd, void* data, size_t len) {
 
 }  // namespace
 
-#if DOT_WITH_TETGEN
 namespace {
 
 // While alive, this process may grow by at most `bytes` of address space
@@ -123,9 +124,28 @@ int RunDelaunayHelper(int in_fd, int out_fd) {
     }
   }
 }
-#endif  // DOT_WITH_TETGEN
 
-DelaunayHelperPool::DelaunayHelperPool(HelperOptions options)
+int DelaunayHelperMain(const char* program, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--memory-limit-bytes") == 0 && i + 1 < argc) {
+      const rlim_t limit = std::strtoull(argv[++i], nullptr, 10);
+      const rlimit rl{limit, limit};
+      if (kCanCapAddressSpace && limit > 0 && setrlimit(RLIMIT_AS, &rl) != 0) {
+        std::cerr << program << ": setrlimit failed\n";
+        return 2;
+      }
+    } else {
+      std::cerr << "usage: " << program
+                << " [--memory-limit-bytes N]\n"
+                   "Started by dot-server or dotctl; speaks a binary protocol "
+                   "on stdin/stdout.\n";
+      return 2;
+    }
+  }
+  return RunDelaunayHelper(STDIN_FILENO, STDOUT_FILENO);
+}
+
+DelaunayHelperPool::DelaunayHelperPool(DelaunayHelperOptions options)
     : config_(std::move(options)), helpers_(std::max(1, config_.count)) {
   // A helper that dies mid-request must surface as EPIPE, not kill us.
   ::signal(SIGPIPE, SIG_IGN);
@@ -158,9 +178,12 @@ Status DelaunayHelperPool::Spawn(Helper* h) {
   posix_spawn_file_actions_adddup2(&actions, to[0], STDIN_FILENO);
   posix_spawn_file_actions_adddup2(&actions, from[1], STDOUT_FILENO);
   const std::string limit = std::to_string(config_.memory_limit_bytes);
-  std::vector<char*> argv = {const_cast<char*>(config_.executable.c_str()),
-                             const_cast<char*>("--memory-limit-bytes"),
-                             const_cast<char*>(limit.c_str()), nullptr};
+  std::vector<char*> argv = {const_cast<char*>(config_.executable.c_str())};
+  for (const std::string& a : config_.arguments) {
+    argv.push_back(const_cast<char*>(a.c_str()));
+  }
+  argv.insert(argv.end(), {const_cast<char*>("--memory-limit-bytes"),
+                           const_cast<char*>(limit.c_str()), nullptr});
   pid_t pid = -1;
   const int rc = ::posix_spawn(&pid, config_.executable.c_str(), &actions,
                                nullptr, argv.data(), environ);
@@ -344,4 +367,4 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
   return OkStatus();
 }
 
-}  // namespace dot::server
+}  // namespace dot
