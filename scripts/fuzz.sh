@@ -9,7 +9,8 @@
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
 #
-# Targets: polygon_text_fuzz polygon_obj_fuzz request_fuzz triangulate_fuzz
+# Targets: polygon_text_fuzz polygon_obj_fuzz mesh_file_fuzz request_fuzz
+# triangulate_fuzz
 # (default: all). Environment:
 #   FUZZ_RUNS=N        also stop a target after N executions
 #   FUZZ_WORK=DIR      scratch directory (kept); default a temporary one,
@@ -21,7 +22,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 if (($#)); then shift; fi
-all_targets=(polygon_text_fuzz polygon_obj_fuzz request_fuzz triangulate_fuzz)
+all_targets=(polygon_text_fuzz polygon_obj_fuzz mesh_file_fuzz request_fuzz triangulate_fuzz)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all_targets[@]}")
 for t in "${targets[@]}"; do

@@ -2,12 +2,15 @@
 // Mesh readers: CGAL's polygon-soup I/O (OFF, OBJ, PLY, STL; ASCII and
 // binary), a well-kept library rather than four parsers of our own.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OFF/File_scanner_OFF.h>
 #include <CGAL/IO/polygon_soup_io.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include "dot/io.h"
 #include "dot/triangulate.h"
@@ -45,6 +48,136 @@ void TriangulatePolygon(const PolygonSoup& soup, const std::vector<int32_t>& f,
   }
 }
 
+// CGAL 5.5's PLY reader trusts the header where only its debug assertions
+// check it (found by mesh_file_fuzz): a "property" line before any
+// "element" indexes an empty vector, and a vertex coordinate (x, y, z) that
+// is not a float or double scalar is read through a null pointer. Such
+// headers, a property named twice in one element (the reader would check
+// one and read the other), types it does not know (it reads nothing for
+// them) and item counts the file cannot hold (it pushes back that many
+// points, "-4" being 2^64 - 4) are refused here first, as are list counts
+// wider than 16 bits (below).
+Status CheckPlyHeader(const std::string& path) {
+  static const std::set<std::string> kPlyTypes = {
+      "char",  "uchar",  "short",   "ushort", "int",   "uint",
+      "float", "double", "int8",    "uint8",  "int16", "uint16",
+      "int32", "uint32", "float32", "float64"};
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return InvalidArgument("cannot read '" + path + "'");
+  std::ifstream in(path, std::ios::binary);
+  const auto refuse = [&](const std::string& why) {
+    return InvalidArgument("'" + path + "' is not a valid ply file: " + why);
+  };
+  std::string line, element;
+  bool has_element = false;
+  std::set<std::string> names;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string word, type, name;
+    words >> word;
+    if (word == "end_header") break;
+    if (word == "element") {
+      std::string count;
+      words >> element >> count;
+      // Each item takes at least a byte (CGAL reads a count of items, each
+      // pushed back, even when it has no property it knows).
+      if (count.empty() || count.size() > 19 ||
+          count.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoull(count) > bytes) {
+        return refuse("element '" + element + "' has a count of '" + count +
+                      "' items, which a file of " + std::to_string(bytes) +
+                      " bytes cannot hold");
+      }
+      has_element = true;
+      names.clear();
+    } else if (word == "property") {
+      if (!has_element) return refuse("a property before any element");
+      words >> type;
+      std::string count_type, item = type;
+      if (type == "list") words >> count_type >> item;
+      words >> name;
+      if (!kPlyTypes.count(item) ||
+          (type == "list" && !kPlyTypes.count(count_type))) {
+        return refuse("property '" + name + "' has an unknown type");
+      }
+      // CGAL resizes a list to the count it reads before reading its items:
+      // a 32-bit count could claim 16 GB. Faces are written with 8-bit
+      // counts ("list uchar int") by CGAL, Blender, MeshLab and dot.
+      if (type == "list" && count_type != "uchar" && count_type != "uint8" &&
+          count_type != "char" && count_type != "int8" &&
+          count_type != "ushort" && count_type != "uint16" &&
+          count_type != "short" && count_type != "int16") {
+        return refuse("list property '" + name + "' has " + count_type +
+                      " counts; dot reads lists with 8- or 16-bit counts "
+                      "(re-save it as 'list uchar int')");
+      }
+      if (!names.insert(name).second) {
+        return refuse("property '" + name + "' twice in element '" + element +
+                      "'");
+      }
+      const bool vertex = element == "vertex" || element == "vertices";
+      const bool coordinate = name == "x" || name == "y" || name == "z";
+      if (vertex && coordinate && type != "float" && type != "float32" &&
+          type != "double" && type != "float64") {
+        return refuse("vertex coordinate '" + name + "' is of type '" + type +
+                      "'; it must be float or double");
+      }
+    }
+  }
+  return OkStatus();
+}
+
+// OFF through CGAL's own scanner, as CGAL::IO::read_OFF reads it, but with
+// every count bounded by the file's size before anything is allocated:
+// CGAL 5.5 resizes to the counts the file states, so a 70-byte file
+// claiming a face of 2*10^9 corners made it allocate 16 GB (found by
+// mesh_file_fuzz). Each vertex, face and corner takes at least one byte.
+bool ReadOff(const std::string& path, std::vector<Point>* points,
+             std::vector<std::vector<std::size_t>>* polygons) {
+  std::error_code ec;
+  const auto bytes =
+      static_cast<std::size_t>(std::filesystem::file_size(path, ec));
+  if (ec) return false;
+  std::ifstream in(path, std::ios::binary);
+  CGAL::File_scanner_OFF scanner(in);
+  if (in.fail() || scanner.size_of_vertices() > bytes ||
+      scanner.size_of_facets() > bytes) {
+    return false;
+  }
+  points->resize(scanner.size_of_vertices());
+  for (Point& p : *points) {
+    double x = 0, y = 0, z = 0, w = 1, ignored = 0;
+    unsigned char r = 0, g = 0, b = 0;
+    scanner.scan_vertex(x, y, z, w);
+    if (scanner.has_normals()) scanner.scan_normal(ignored, ignored, ignored);
+    if (scanner.has_vcolors()) scanner.scan_color(r, g, b);
+    if (scanner.has_textures()) scanner.scan_texture(ignored, ignored);
+    if (!in.good() || w == 0) return false;
+    p = Point(x / w, y / w, z / w);
+  }
+  polygons->resize(scanner.size_of_facets());
+  std::size_t corners = 0;
+  for (std::size_t f = 0; f < polygons->size(); ++f) {
+    std::size_t no = std::size_t(-1);
+    scanner.scan_facet(no, f);
+    if ((!in.eof() && !in.good()) || no == std::size_t(-1)) return false;
+    corners += no;
+    if (no > bytes || corners > bytes) return false;
+    std::vector<std::size_t>& face = (*polygons)[f];
+    face.resize(no);
+    for (std::size_t j = 0; j < no; ++j) {
+      scanner.scan_facet_vertex_index(face[j], j + 1, f);
+      if (!in || face[j] >= points->size()) return false;
+    }
+    if (scanner.has_fcolors()) {
+      unsigned char r = 0, g = 0, b = 0;
+      scanner.scan_color(r, g, b);
+    }
+  }
+  return !in.fail();
+}
+
 }  // namespace
 
 Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
@@ -57,11 +190,16 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
   if (!std::ifstream(path)) {
     return InvalidArgument("cannot open mesh file '" + path + "'");
   }
+  if (ext == ".ply") {
+    const Status header = CheckPlyHeader(path);
+    if (!header.ok()) return header;
+  }
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
   try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons);
+    ok = ext == ".off" ? ReadOff(path, &points, &polygons)
+                       : CGAL::IO::read_polygon_soup(path, points, polygons);
   } catch (const std::exception& e) {
     return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
                            " file: " + e.what());
