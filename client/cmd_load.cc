@@ -401,7 +401,9 @@ void RunLoad(LoadFlags& f, Context* ctx) {
                                              run.polygons[i], f.request.weights,
                                              f.request.ToOptions()));
   }
-  if (f.local) run.helpers = LocalDelaunayHelpers(f.concurrency);
+  if (f.local && f.request.delaunay == "tetgen") {
+    run.helpers = LocalDelaunayHelpers(f.concurrency);
+  }
   for (int c = 0; c < f.channels && !f.local; ++c) {
     auto channel = ChannelOrReport(ctx);
     if (!channel) return;

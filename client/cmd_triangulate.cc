@@ -411,7 +411,7 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
       channel = ChannelOrReport(ctx);
       if (!channel) return;
       stub = v1::Triangulator::NewStub(channel);
-    } else {
+    } else if (flags->request.delaunay == "tetgen") {
       helpers = LocalDelaunayHelpers(1);
     }
     v1::Options options = flags->request.ToOptions();

@@ -35,7 +35,10 @@ CallOutcome TriangulateRemote(
 CallOutcome TriangulateLocal(const v1::TriangulateRequest& request,
                              DelaunayHelperPool* helpers);
 // `count` TetGen helper processes, each dotctl itself in its helper mode
-// (kDelaunayHelperArgument); null in a build without TetGen.
+// (kDelaunayHelperArgument); null in a build without TetGen. Made only
+// when TetGen is asked for: the pool ignores SIGPIPE process-wide, so
+// that `dotctl ... -o - | head` would then report EPIPE instead of ending
+// quietly.
 std::unique_ptr<DelaunayHelperPool> LocalDelaunayHelpers(int count);
 // dotctl's first argument that makes it a Delaunay helper process.
 inline constexpr const char* kDelaunayHelperArgument = "--delaunay-helper";
