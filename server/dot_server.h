@@ -13,8 +13,8 @@
 #include <string>
 
 #include "compute/compute_pool.h"
-#include "dot/delaunay_helpers.h"
 #include "config.h"
+#include "dot/delaunay_helpers.h"
 #include "rpc/job.h"
 #include "rpc/triangulator_service.h"
 #include "server_metrics.h"
