@@ -125,25 +125,6 @@ bool LoadMesh(const Config& config, const std::string& name, MeshData* out) {
   return Repaired(soup, name, out);
 }
 
-// `mesh` restricted to the faces `keep` marks, unused vertices dropped.
-MeshData Compacted(const MeshData& mesh, const std::vector<bool>& keep) {
-  MeshData out;
-  std::vector<int32_t> id(mesh.vertices.size(), -1);
-  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-    if (!keep[f]) continue;
-    Triangle t = mesh.triangles[f];
-    for (int32_t& v : t) {
-      if (id[v] < 0) {
-        id[v] = static_cast<int32_t>(out.vertices.size());
-        out.vertices.push_back(mesh.vertices[v]);
-      }
-      v = id[v];
-    }
-    out.triangles.push_back(t);
-  }
-  return out;
-}
-
 uint64_t EdgeKey(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
   return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
@@ -247,8 +228,8 @@ Status CutPinched(const MeshData& mesh, int pairs, int ta, int tb,
   }
   std::vector<bool> kept(nf);
   for (size_t f = 0; f < nf; ++f) kept[f] = !in_hole[f];
-  *holey = Compacted(mesh, kept);
-  *removed = Compacted(mesh, in_hole);
+  *holey = SubMesh(mesh, kept);
+  *removed = SubMesh(mesh, in_hole);
   return OkStatus();
 }
 

@@ -26,6 +26,10 @@ struct Hole {
 // is applied by Triangulate (Options::protect_edges).
 Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out);
 
+// `mesh` restricted to the faces `keep` marks (one flag per triangle),
+// vertices renumbered in order of first use, unused ones dropped.
+MeshData SubMesh(const MeshData& mesh, const std::vector<bool>& keep);
+
 // Test data for hole filling: `count` holes of `triangles` triangles each,
 // grown from seeds derived from `seed`, apart from each other (no shared
 // vertex). `holey` is the mesh without them (unused vertices dropped),

@@ -216,10 +216,7 @@ Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
   return WalkBoundary(growth, next, first, edges, &out->boundary);
 }
 
-namespace {
-
-// `mesh` restricted to the faces `keep` marks, unused vertices dropped.
-MeshData Compacted(const MeshData& mesh, const std::vector<bool>& keep) {
+MeshData SubMesh(const MeshData& mesh, const std::vector<bool>& keep) {
   MeshData out;
   std::vector<int32_t> id(mesh.vertices.size(), -1);
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -236,8 +233,6 @@ MeshData Compacted(const MeshData& mesh, const std::vector<bool>& keep) {
   }
   return out;
 }
-
-}  // namespace
 
 Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
                 MeshData* holey, MeshData* removed) {
@@ -267,8 +262,8 @@ Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
   }
   std::vector<bool> kept(in_hole.size());
   for (size_t f = 0; f < in_hole.size(); ++f) kept[f] = !in_hole[f];
-  *holey = Compacted(mesh, kept);
-  *removed = Compacted(mesh, in_hole);
+  *holey = SubMesh(mesh, kept);
+  *removed = SubMesh(mesh, in_hole);
   return OkStatus();
 }
 
