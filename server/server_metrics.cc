@@ -1,9 +1,58 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "server_metrics.h"
 
+#include <CivetServer.h>
+#include <civetweb.h>
 #include <prometheus/text_serializer.h>
 
+#include <string_view>
+
 namespace dot::server {
+namespace {
+
+// Debian's civetweb 1.15 runs each request on a 100 KB thread stack, and its
+// own answer to a request no handler takes (404 for `GET /`, 405 for `HEAD
+// /metrics`, ...) overflows that stack: one `curl -I` was a SIGSEGV of the
+// whole server. So every request is answered here, before civetweb's
+// dispatch, and only `GET /metrics` goes on to prometheus-cpp's handler.
+int AnswerAllButGetMetrics(mg_connection* conn) {
+  const mg_request_info* info = mg_get_request_info(conn);
+  const std::string_view method =
+      info && info->request_method ? info->request_method : "";
+  const std::string_view uri = info && info->local_uri ? info->local_uri : "";
+  const bool read = method == "GET" || method == "HEAD";
+  if (uri == "/metrics" && method == "GET") return 0;
+  int status = 200;
+  const char* reason = "OK";
+  const char* type = "text/plain; charset=utf-8";
+  std::string_view body;
+  const char* allow = "";
+  if (uri == "/metrics" && method == "HEAD") {
+    type = "text/plain; version=0.0.4; charset=utf-8";
+  } else if (uri == "/" && read) {
+    type = "text/html; charset=utf-8";
+    body =
+        "<!doctype html><title>dot-server</title>"
+        "<p>dot-server metrics: <a href=\"/metrics\">/metrics</a></p>\n";
+  } else if (uri == "/" || uri == "/metrics") {
+    status = 405;
+    reason = "Method Not Allowed";
+    body = "only GET and HEAD are served here\n";
+    allow = "Allow: GET, HEAD\r\n";
+  } else {
+    status = 404;
+    reason = "Not Found";
+    body = "not found: the metrics are at /metrics\n";
+  }
+  mg_printf(conn,
+            "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\n"
+            "%sConnection: close\r\n\r\n",
+            status, reason, type, body.size(), allow);
+  if (method != "HEAD") mg_write(conn, body.data(), body.size());
+  return status;
+}
+
+}  // namespace
 
 ServerMetrics::ServerMetrics(const MetricsOptions& options)
     : registry_(std::make_shared<prometheus::Registry>()) {
@@ -46,10 +95,16 @@ ServerMetrics::ServerMetrics(const MetricsOptions& options)
     // Its own small pool of HTTP threads, each giving up on a client that
     // is silent for `request_timeout_ms`, and no keep-alive: slow or idle
     // scrapers cannot hold the endpoint (the gRPC port is separate).
-    exposer_ = std::make_unique<prometheus::Exposer>(std::vector<std::string>{
-        "listening_ports", options.bind + ":" + std::to_string(options.port),
-        "num_threads", std::to_string(options.threads), "request_timeout_ms",
-        std::to_string(options.request_timeout_ms), "enable_keep_alive", "no"});
+    CivetCallbacks callbacks{};
+    callbacks.begin_request = AnswerAllButGetMetrics;
+    exposer_ = std::make_unique<prometheus::Exposer>(
+        std::vector<std::string>{
+            "listening_ports",
+            options.bind + ":" + std::to_string(options.port), "num_threads",
+            std::to_string(options.threads), "request_timeout_ms",
+            std::to_string(options.request_timeout_ms), "enable_keep_alive",
+            "no"},
+        &callbacks);
     exposer_->RegisterCollectable(registry_);
   }
 }

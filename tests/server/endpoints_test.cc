@@ -63,6 +63,66 @@ TEST(EndpointsTest, SecondServerOnTheSamePortIsRefused) {
   EXPECT_NE(error.find("cannot listen"), std::string::npos) << error;
 }
 
+// The whole answer of the metrics endpoint to one raw HTTP request.
+std::string HttpExchange(int port, const std::string& request) {
+  const int fd = Connect(port);
+  if (fd < 0) return "";
+  if (::write(fd, request.data(), request.size()) !=
+      static_cast<ssize_t>(request.size())) {
+    ::close(fd);
+    return "";
+  }
+  std::string answer;
+  char buf[4096];
+  ssize_t got;
+  while ((got = ::read(fd, buf, sizeof buf)) > 0) answer.append(buf, got);
+  ::close(fd);
+  return answer;
+}
+
+TEST(EndpointsTest, MetricsPortAnswersEveryMethodAndPathWithoutCrashing) {
+  // Before: each of these was a SIGSEGV of the whole server (civetweb's own
+  // 404/405 answers overflow its thread stacks).
+  auto config = testing::LoopbackConfig();
+  config.metrics.port = testing::FreeLoopbackPort();
+  auto s = testing::StartServer(config);
+  ASSERT_TRUE(s.server);
+  const int port = config.metrics.port;
+  struct Case {
+    const char* request_line;
+    const char* status;
+  };
+  const Case cases[] = {
+      {"HEAD /metrics", "HTTP/1.1 200"},
+      {"GET /", "HTTP/1.1 200"},
+      {"HEAD /", "HTTP/1.1 200"},
+      {"GET /favicon.ico", "HTTP/1.1 404"},
+      {"POST /metrics", "HTTP/1.1 405"},
+      {"OPTIONS /metrics", "HTTP/1.1 405"},
+      {"PUT /metrics", "HTTP/1.1 405"},
+      {"DELETE /", "HTTP/1.1 405"},
+      {"PATCH /x/../metrics", "HTTP/1.1 405"},
+      {"GET /metrics/x", "HTTP/1.1 404"},
+      {"OPTIONS *", ""},  // civetweb closes the connection: no answer
+  };
+  for (const Case& c : cases) {
+    const std::string answer = HttpExchange(
+        port, std::string(c.request_line) +
+                  " HTTP/1.1\r\nHost: x\r\nContent-Length: 0\r\n\r\n");
+    EXPECT_EQ(answer.rfind(c.status, 0), 0u)
+        << c.request_line << " -> " << answer.substr(0, 80);
+    if (std::string(c.request_line).rfind("HEAD", 0) == 0) {
+      EXPECT_EQ(answer.find("\r\n\r\n") + 4, answer.size())
+          << c.request_line << ": a HEAD answer has no body";
+    }
+  }
+  const std::string metrics =
+      HttpExchange(port, "GET /metrics HTTP/1.0\r\n\r\n");
+  EXPECT_EQ(metrics.rfind("HTTP/1.1 200", 0), 0u) << metrics.substr(0, 80);
+  EXPECT_NE(metrics.find("dot_delaunay_helper_starts_total"),
+            std::string::npos);
+}
+
 TEST(EndpointsTest, MetricsAnswerWhileSlowClientsHoldConnections) {
 #if defined(__SANITIZE_ADDRESS__)
   // civetweb (Debian's, built with small fixed thread stacks) overflows its
