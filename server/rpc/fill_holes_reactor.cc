@@ -78,12 +78,14 @@ void FillHolesReactor::OnReadDone(bool ok) {
     return;
   }
   job_->on_done = [this] { OnJobDone(); };
-  if (!runner_->StartTask(job_, [this](Job& job) { return Fill(job); })) {
+  if (!runner_->StartTask(job_, [this](Job& job, const Control& control) {
+        return Fill(job, control);
+      })) {
     FinishWith(runner_->Overloaded());
   }
 }
 
-Status FillHolesReactor::Fill(Job& job) {
+Status FillHolesReactor::Fill(Job& job, const Control& control) {
   FillOptions options;
   Status s = wire::FillOptionsFromWire(reader_.options(), &options);
   if (!s.ok()) return s;
@@ -104,9 +106,6 @@ Status FillHolesReactor::Fill(Job& job) {
   if (!s.ok()) return s;
   input_vertices_ = mesh.vertices.size();
   input_faces_ = mesh.triangles.size();
-  Control control;
-  control.cancel = &job.cancel;
-  control.deadline = job.deadline;
   result_ = FillHoles(mesh, options, control,
                       [this](int done, int total) { OnHole(done, total); });
   const FillReport& r = result_.report;

@@ -33,7 +33,7 @@ class FillHolesReactor final
 
  private:
   // The fill itself, on a compute thread.
-  Status Fill(Job& job);
+  Status Fill(Job& job, const Control& control);
   // Called on the computing threads.
   void OnHole(int done, int total);
   void OnJobDone();

@@ -127,7 +127,7 @@ std::shared_ptr<Job> JobRunner::AdmitTask(
 }
 
 bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
-                          std::function<Status(Job&)> work) {
+                          std::function<Status(Job&, const Control&)> work) {
   const bool queued = pool_->TrySubmit([this, job, work = std::move(work)] {
     job->started = Clock::now();
     metrics_->queue_depth().Set(pool_->queued());
@@ -140,7 +140,7 @@ bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
                                       "deadline passed in the queue");
     } else {
       try {
-        job->result.status = work(*job);
+        job->result.status = work(*job, ControlFor(*job));
       } catch (const std::exception& e) {  // bad_alloc above all
         job->result.status =
             MakeStatus(StatusCode::kResourceExhausted,
@@ -188,6 +188,34 @@ grpc::Status JobRunner::Overloaded() const {
               " requests already queued; retry later"};
 }
 
+Control JobRunner::ControlFor(Job& job) {
+  Control control;
+  control.cancel = &job.cancel;
+  control.deadline = job.deadline;
+  if (job.on_progress) {
+    control.progress = [&job](Stage stage, double fraction) {
+      v1::Progress p;
+      p.set_stage(wire::ToWire(stage));
+      p.set_fraction(fraction);
+      p.set_elapsed_ms(Ms(Clock::now() - job.arrived));
+      job.on_progress(p);
+    };
+  }
+  // Every path to TetGen goes through the helper processes: a TetGen
+  // assertion then fails one request, not the server.
+  if (helpers_ != nullptr) {
+    control.tetrahedralize = [this, &job](const std::vector<Vec3>& points,
+                                          Tetrahedralization* out) {
+      const Status s =
+          helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline,
+                                   job.options.memory_budget_bytes);
+      metrics_->HelperStarts(helpers_->starts());
+      return s;
+    };
+  }
+  return control;
+}
+
 void JobRunner::Run(Job& job) {
   job.started = Clock::now();
   metrics_->queue_depth().Set(pool_->queued());
@@ -200,28 +228,7 @@ void JobRunner::Run(Job& job) {
     result.status = MakeStatus(StatusCode::kDeadlineExceeded,
                                "deadline passed in the queue");
   } else {
-    Control control;
-    control.cancel = &job.cancel;
-    control.deadline = job.deadline;
-    if (job.on_progress) {
-      control.progress = [&job](Stage stage, double fraction) {
-        v1::Progress p;
-        p.set_stage(wire::ToWire(stage));
-        p.set_fraction(fraction);
-        p.set_elapsed_ms(Ms(Clock::now() - job.arrived));
-        job.on_progress(p);
-      };
-    }
-    if (helpers_ != nullptr) {
-      control.tetrahedralize = [this, &job](const std::vector<Vec3>& points,
-                                            Tetrahedralization* out) {
-        const Status s =
-            helpers_->Tetrahedralize(points, out, &job.cancel, job.deadline,
-                                     job.options.memory_budget_bytes);
-        metrics_->HelperStarts(helpers_->starts());
-        return s;
-      };
-    }
+    Control control = ControlFor(job);
     if (!job.wire.no_cache()) control.space_cache = cache_;
     try {
       result = dot::Triangulate(job.problem, job.options, control);

@@ -76,10 +76,12 @@ class JobRunner {
                                  uint32_t budget_ms,
                                  std::chrono::system_clock::time_point deadline,
                                  grpc::Status* error);
-  // Runs `work` on the compute pool (its status lands in job->result.status),
-  // then job->on_done. False when the queue is full.
+  // Runs `work` on the compute pool with the job's Control (cancel,
+  // deadline, TetGen in the helpers); its status lands in
+  // job->result.status, then job->on_done runs. False when the queue is
+  // full.
   bool StartTask(const std::shared_ptr<Job>& job,
-                 std::function<Status(Job&)> work);
+                 std::function<Status(Job&, const Control&)> work);
 
   // Runs the job: inline on this thread when `may_run_here` and a compute
   // slot is free (on_done has then run when this returns), else queued.
@@ -107,6 +109,8 @@ class JobRunner {
 
  private:
   void Run(Job& job);
+  // The Control every computation of `job` runs under.
+  Control ControlFor(Job& job);
   // Gives memory freed beyond options_.malloc_keep_bytes back to the kernel.
   void ReturnFreedMemory();
   // False when draining began: the job is then refused, not tracked, so a

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 
 #include "fill_call.h"
@@ -162,6 +163,59 @@ TEST(FillHolesServiceTest, LimitsAndCancel) {
                 .count(),
             5.0);
   const auto after = client::FillRemote(*roomy.stub, "after", {},
+                                        ToSoup(HoleyTorus(40, 20, 1)), 60);
+  EXPECT_TRUE(after.status.ok()) << after.status.error_message();
+}
+
+// A strip around the polygon in `xyz_path`: its inner border is exactly the
+// polygon, the outer one the polygon scaled by 2 about its centroid.
+MeshData StripAroundPolygon(const std::string& xyz_path) {
+  std::ifstream in(xyz_path);
+  std::vector<Vec3> rim;
+  double x, y, z;
+  while (in >> x >> y >> z) rim.push_back({x, y, z});
+  Vec3 c{0, 0, 0};
+  for (const Vec3& p : rim) c = c + p;
+  c = (1.0 / static_cast<double>(rim.size())) * c;
+  MeshData m;
+  m.vertices = rim;
+  for (const Vec3& p : rim) m.vertices.push_back(2.0 * p - c);
+  const auto k = static_cast<int32_t>(rim.size());
+  for (int32_t i = 0; i < k; ++i) {
+    const int32_t j = (i + 1) % k;
+    m.triangles.push_back({i, k + i, k + j});
+    m.triangles.push_back({i, k + j, j});
+  }
+  return m;
+}
+
+TEST(FillHolesServiceTest, TetgenAbortOnAHoleRimFailsTheCallNotTheServer) {
+  // Before: FillHoles ran TetGen in the server's process, and TetGen 1.5's
+  // assertion on this rim aborted the whole server.
+  auto config = LoopbackConfig();
+  config.service.solve.delaunay = DelaunayBackend::kTetgen;
+  auto s = StartServer(config);
+  ASSERT_FALSE(config.helpers.executable.empty());
+  const MeshData strip =
+      StripAroundPolygon(DOT_TEST_DATA_DIR "/tetgen_aborts.xyz");
+  v1::FillOptions options;
+  options.set_no_repair(true);
+  options.set_stage(v1::FILL_STAGE_TRIANGULATE);
+  const auto outcome =
+      client::FillRemote(*s.stub, "rim", options, ToSoup(strip), 60);
+  // The hole TetGen could not tetrahedralize is reported, not filled.
+  if (outcome.status.ok()) {
+    EXPECT_LT(outcome.report.filled(), outcome.report.loops());
+    bool named = false;
+    for (const auto& h : outcome.report.holes()) {
+      named |= h.reason().find("helper") != std::string::npos;
+    }
+    EXPECT_TRUE(named) << "no hole names the helper's failure";
+  } else {
+    EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INTERNAL)
+        << outcome.status.error_message();
+  }
+  const auto after = client::FillRemote(*s.stub, "after", {},
                                         ToSoup(HoleyTorus(40, 20, 1)), 60);
   EXPECT_TRUE(after.status.ok()) << after.status.error_message();
 }
