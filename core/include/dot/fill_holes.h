@@ -48,8 +48,11 @@ struct HoleLoop {
 // Every border cycle of an edge-manifold, consistently oriented mesh, each
 // split at repeated vertices into simple loops. Loops run against the
 // border half-edges of their faces, so a patch oriented by the loop agrees
-// with its neighbours. kInvalidArgument names a non-manifold edge.
-Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops);
+// with its neighbours. kInvalidArgument names a non-manifold edge, or a
+// vertex that starts more than kMaxBorderEdgesAtVertex border edges.
+inline constexpr size_t kMaxBorderEdgesAtVertex = 64;
+Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops,
+                     const Control& control = {});
 
 // Which loops FillHoles fills. Every field, its meaning and default:
 //  max_edges     only loops with at most this many edges; 0: any. Default 0.

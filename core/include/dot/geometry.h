@@ -3,6 +3,7 @@
 #ifndef DOT_GEOMETRY_H_
 #define DOT_GEOMETRY_H_
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -36,9 +37,15 @@ inline Vec3 Cross(const Vec3& a, const Vec3& b) {
 inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
 inline double Distance(const Vec3& a, const Vec3& b) { return Norm(a - b); }
 // Unit vector along `a`, or the zero vector when `a` is zero.
+// Divided by its largest component first, so that vectors of any finite
+// size (a cross product at coordinates of 1e150) neither overflow nor
+// underflow.
 inline Vec3 Normalized(const Vec3& a) {
-  const double n = Norm(a);
-  return n > 0 ? (1.0 / n) * a : Vec3{};
+  const double m =
+      std::max(std::max(std::abs(a.x), std::abs(a.y)), std::abs(a.z));
+  if (!(m > 0) || !std::isfinite(m)) return Vec3{};
+  const Vec3 b{a.x / m, a.y / m, a.z / m};
+  return (1.0 / Norm(b)) * b;
 }
 inline bool IsFinite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

@@ -72,8 +72,12 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out);
 // corners triangulated (DOT with the area metric over their planar CDT; a
 // fan where that fails). No repair: see dot/mesh_repair.h.
 Status ReadMeshFile(const std::string& path, MeshData* out);
-// Triangulates the faces of a soup as ReadMeshFile does.
+// Triangulates the faces of a soup as ReadMeshFile does. `control`'s cancel
+// and deadline are honoured between and within polygons.
+struct Control;
 Status TriangulateSoup(const PolygonSoup& soup, MeshData* out);
+Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
+                       MeshData* out);
 
 }  // namespace dot
 

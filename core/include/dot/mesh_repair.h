@@ -17,6 +17,7 @@
 
 #include "dot/io.h"
 #include "dot/status.h"
+#include "dot/triangulate.h"
 
 namespace dot {
 
@@ -40,7 +41,11 @@ struct RepairReport {
 };
 
 // Repairs `soup` into `out`. Vertices keep their first-occurrence order.
+// kInvalidArgument when nothing is left (every face degenerate or
+// duplicate). `control`'s cancel and deadline are honoured in every step.
 Status RepairMesh(const PolygonSoup& soup, MeshData* out, RepairReport* report);
+Status RepairMesh(const PolygonSoup& soup, const Control& control,
+                  MeshData* out, RepairReport* report);
 
 }  // namespace dot
 

@@ -23,8 +23,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Status CheckMesh(const MeshData& mesh) {
+Status CheckMesh(const MeshData& mesh, RunTicker* ticker) {
+  if (mesh.triangles.empty()) return InvalidArgument("the mesh has no faces");
   for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (!ticker->Tick()) return ticker->status();
     if (!IsFinite(mesh.vertices[v])) {
       return InvalidArgument("vertex " + std::to_string(v) +
                              " has a non-finite coordinate");
@@ -32,6 +34,7 @@ Status CheckMesh(const MeshData& mesh) {
   }
   const auto nv = static_cast<int64_t>(mesh.vertices.size());
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (!ticker->Tick()) return ticker->status();
     const Triangle& t = mesh.triangles[f];
     for (int32_t v : t) {
       if (v < 0 || v >= nv) {
@@ -50,10 +53,25 @@ Status CheckMesh(const MeshData& mesh) {
   return OkStatus();
 }
 
-// Why a loop is not filled, or "" when it is selected.
-std::vector<std::string> Select(const std::vector<HoleLoop>& loops,
-                                const HoleSelection& sel) {
-  std::vector<std::string> why(loops.size());
+// Why a loop is not filled, or "" when it is selected; `ids` that name no
+// loop are refused (a typo must not pass as "nothing to fill").
+Status Select(const std::vector<HoleLoop>& loops, const HoleSelection& sel,
+              std::vector<std::string>* reasons) {
+  std::vector<std::string>& why = *reasons;
+  why.assign(loops.size(), "");
+  // Membership by flag, not by search: ids may be repeated millions of
+  // times.
+  std::vector<bool> wanted(sel.ids.empty() ? 0 : loops.size(), false);
+  for (int32_t id : sel.ids) {
+    if (id < 0 || static_cast<size_t>(id) >= loops.size()) {
+      return InvalidArgument(
+          "there is no hole " + std::to_string(id) + ": the mesh has " +
+          std::to_string(loops.size()) + " holes" +
+          (loops.empty() ? std::string()
+                         : ", ids 0.." + std::to_string(loops.size() - 1)));
+    }
+    wanted[id] = true;
+  }
   int32_t longest = -1;
   if (sel.skip_longest) {
     std::map<int32_t, size_t> edges;
@@ -66,8 +84,7 @@ std::vector<std::string> Select(const std::vector<HoleLoop>& loops,
   for (size_t i = 0; i < loops.size(); ++i) {
     const HoleLoop& l = loops[i];
     const auto n = static_cast<int>(l.vertices.size());
-    if (!sel.ids.empty() &&
-        std::find(sel.ids.begin(), sel.ids.end(), l.id) == sel.ids.end()) {
+    if (!sel.ids.empty() && !wanted[l.id]) {
       why[i] = "not among the requested holes";
     } else if (l.border == longest) {
       why[i] = "the longest border (skip_longest)";
@@ -79,7 +96,12 @@ std::vector<std::string> Select(const std::vector<HoleLoop>& loops,
                " exceeds max_diameter " + std::to_string(sel.max_diameter);
     }
   }
-  return why;
+  return OkStatus();
+}
+
+bool AllFinite(const std::vector<Vec3>& points) {
+  return std::all_of(points.begin(), points.end(),
+                     [](const Vec3& p) { return IsFinite(p); });
 }
 
 struct HoleWork {
@@ -114,11 +136,30 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     r.reason = s.message;
     return;
   }
+  if (!AllFinite(w->patch.new_vertices)) {  // the promise: never a NaN
+    r.status = HoleStatus::kFailed;
+    r.reason = "the patch has a non-finite vertex: left open";
+    return;
+  }
   const HolePatch dot_patch = w->patch;
   s = RefineAndFairPatch(mesh, topo, options, control, first_new, &w->patch,
                          &r);
   if (!s.ok()) {
     w->status = s;
+    return;
+  }
+  if (!AllFinite(w->patch.new_vertices)) {
+    r.reason =
+        "refinement or fairing made a non-finite vertex: kept the "
+        "unrefined DOT patch";
+    w->patch = dot_patch;
+    r.refined_vertices = 0;
+    r.faired = false;
+    r.patch_triangles = static_cast<int32_t>(dot_patch.faces.size());
+  }
+  RunTicker ticker_check(control, "the intersection check");
+  if (!ticker_check.Poll()) {
+    w->status = ticker_check.status();
     return;
   }
   t0 = Clock::now();
@@ -261,13 +302,25 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
                      const Control& control, const HoleProgressFn& on_hole) {
   const auto t_start = Clock::now();
   FillResult out;
-  out.status = CheckMesh(mesh);
+  RunTicker ticker(control, "the check of the mesh");
+  out.status = CheckMesh(mesh, &ticker);
   if (!out.status.ok()) return out;
   std::vector<HoleLoop> loops;
-  out.status = FindHoleLoops(mesh, &loops);
+  out.status = FindHoleLoops(mesh, &loops, control);
   if (!out.status.ok()) return out;
+  std::vector<std::string> skip;
+  out.status = Select(loops, options.selection, &skip);
+  if (!out.status.ok()) return out;
+  RunTicker between(control, "hole filling");
+  if (!between.Poll()) {
+    out.status = between.status();
+    return out;
+  }
   const auto topo = BuildMeshTopology(mesh);
-  const std::vector<std::string> skip = Select(loops, options.selection);
+  if (!between.Poll()) {
+    out.status = between.status();
+    return out;
+  }
 
   std::vector<HoleWork> work(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) {
@@ -310,6 +363,11 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
   Merged merged;
   merged.split.assign(mesh.triangles.size(), false);
   for (HoleWork& w : work) {
+    if (!between.Poll()) {  // the merge checks patches against each other
+      out = {};
+      out.status = between.status();
+      return out;
+    }
     HoleReport& r = w.report;
     if (r.status == HoleStatus::kFilled) {
       const std::string refused = Merge(mesh, w, &merged, &out);
@@ -335,6 +393,11 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       static_cast<int32_t>(out.mesh.vertices.size() - mesh.vertices.size());
   out.report.added_faces =
       static_cast<int32_t>(out.mesh.triangles.size() - mesh.triangles.size());
+  if (!between.Poll()) {
+    out = {};
+    out.status = between.status();
+    return out;
+  }
   out.report.closed = Closed(out.mesh.triangles);
   out.report.total_ms = MsSince(t_start);
   return out;

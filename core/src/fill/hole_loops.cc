@@ -8,6 +8,7 @@
 #include "dot/fill_holes.h"
 #include "fill/mesh_topology.h"
 #include "mesh/edge_index.h"
+#include "util/run_control.h"
 
 namespace dot {
 namespace {
@@ -154,11 +155,14 @@ std::vector<HoleEdge>::const_iterator NextAroundFan(
 
 }  // namespace
 
-Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
+Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops,
+                     const Control& control) {
   loops->clear();
+  RunTicker ticker(control, "the search for the mesh's holes");
   std::vector<HoleEdge> border;
   Status s = BorderEdges(mesh, &border);
   if (!s.ok()) return s;
+  if (!ticker.Poll()) return ticker.status();
   // Deterministic walks: edges by start vertex, then end.
   std::sort(border.begin(), border.end(),
             [](const HoleEdge& a, const HoleEdge& b) {
@@ -169,6 +173,21 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
         border.begin(), border.end(), v,
         [](const HoleEdge& e, int32_t x) { return e.from < x; });
   };
+  // Each arrival at a pinched vertex weighs all of its border edges, so a
+  // vertex on thousands of them (60,000 triangles sharing one corner and
+  // nothing else) made the walk quadratic: minutes for a 6 MB file. No hole
+  // meets itself that often; such a vertex is refused by name.
+  for (size_t i = 0, j = 0; i < border.size(); i = j) {
+    while (j < border.size() && border[j].from == border[i].from) ++j;
+    if (j - i > kMaxBorderEdgesAtVertex) {
+      return InvalidArgument(
+          "vertex " + std::to_string(border[i].from) + " starts " +
+          std::to_string(j - i) + " border edges (at most " +
+          std::to_string(kMaxBorderEdgesAtVertex) +
+          " are accepted): so many surface pieces meeting at one vertex do "
+          "not bound holes; split it first");
+    }
+  }
   std::vector<bool> used(border.size(), false);
   std::shared_ptr<const MeshTopology> topo;  // for pinched vertices
   std::vector<int32_t> position(mesh.vertices.size(), -1);
@@ -178,6 +197,7 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops) {
     std::vector<HoleEdge> walk;
     size_t cur = first;
     for (;;) {
+      if (!ticker.Tick()) return ticker.status();
       used[cur] = true;
       walk.push_back(border[cur]);
       const int32_t v = border[cur].to;

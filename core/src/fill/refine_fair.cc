@@ -10,10 +10,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <unordered_map>
 
 #include "dot/fill_holes.h"
 #include "fill/mesh_topology.h"
+#include "fill/patch_check.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -26,6 +28,44 @@ using FaceIndex = SurfaceMesh::Face_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 constexpr int kRings = 3;
+
+// Thrown from inside CGAL's refinement (which has no way to stop) by the
+// output iterator below; caught around the call.
+struct StopRefining {
+  Status status;  // cancel or deadline; OK when the vertex cap was reached
+};
+
+// Counts the vertices refinement adds, as CGAL adds them, and stops it when
+// there are more than `cap` or the run must stop.
+struct CountingVertexOut {
+  std::vector<VertexIndex>* out;
+  size_t cap;
+  RunTicker* ticker;
+
+  CountingVertexOut& operator*() { return *this; }
+  CountingVertexOut& operator++() { return *this; }
+  CountingVertexOut operator++(int) { return *this; }
+  CountingVertexOut& operator=(VertexIndex v) {
+    out->push_back(v);
+    if (out->size() > cap) throw StopRefining{OkStatus()};
+    if ((out->size() & 63) == 0 && !ticker->Poll()) {
+      throw StopRefining{ticker->status()};
+    }
+    return *this;
+  }
+};
+
+// The most vertices refinement may add to a hole of `rim` boundary vertices:
+// Liepa's default density gives about 0.1 rim^2 in a round hole, so this
+// leaves room for densities up to ~4x the default, and stays within the
+// memory budget (refinement and fairing use ~kBytesPerRefinedVertex each).
+constexpr int64_t kBytesPerRefinedVertex = 4096;
+size_t RefinedVertexCap(size_t rim, int64_t memory_budget_bytes) {
+  const size_t by_rim = 2 * rim * rim + 1000;
+  const size_t by_budget = static_cast<size_t>(
+      std::max<int64_t>(1000, memory_budget_bytes / kBytesPerRefinedVertex));
+  return std::min(by_rim, by_budget);
+}
 
 // The patch's neighbourhood: local vertex numbering and context faces.
 struct Neighbourhood {
@@ -90,10 +130,11 @@ Neighbourhood Gather(const MeshData& mesh, const MeshTopology& topo,
 // The patch as mesh ids once refine/fair changed `sm`: gathered vertices
 // keep their ids (and an inserted boundary vertex its position), vertices
 // beyond them are new.
+template <typename Unscale>
 void ExtractPatch(const SurfaceMesh& sm,
                   const SurfaceMesh::Property_map<FaceIndex, bool>& is_context,
                   const std::vector<int32_t>& global, int32_t first_new_id,
-                  HolePatch* patch) {
+                  const Unscale& unscale, HolePatch* patch) {
   const size_t known = global.size();
   std::vector<int32_t> id_of(sm.number_of_vertices());
   for (VertexIndex v : sm.vertices()) {
@@ -102,8 +143,7 @@ void ExtractPatch(const SurfaceMesh& sm,
     } else {
       id_of[v.idx()] =
           first_new_id + static_cast<int32_t>(patch->new_vertices.size());
-      const K::Point_3& p = sm.point(v);
-      patch->new_vertices.push_back({p.x(), p.y(), p.z()});
+      patch->new_vertices.push_back(unscale(sm.point(v)));
     }
   }
   patch->faces.clear();
@@ -125,14 +165,30 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, HolePatch* patch,
                           HoleReport* report) {
   if (options.stage == FillStage::kTriangulate) return OkStatus();
-  RunTicker ticker(control, Stage::kTiling);
+  RunTicker ticker(control, "refinement and fairing");
   if (!ticker.Poll()) return ticker.status();
   auto t0 = std::chrono::steady_clock::now();
   Neighbourhood nb = Gather(mesh, topology, first_new_id, *patch);
+  auto original = [&](int32_t id) -> const Vec3& {
+    return id < first_new_id ? mesh.vertices[id]
+                             : patch->new_vertices[id - first_new_id];
+  };
+  // Refinement and fairing run on the neighbourhood moved to the origin and
+  // scaled to unit size: at coordinates around 1e-150 fairing's system
+  // underflowed into NaN vertices. New vertices are mapped back.
+  Box3 box;
+  for (int32_t id : nb.global) box.Add(original(id));
+  const Vec3 center = 0.5 * (box.lo + box.hi);
+  const double size =
+      std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y,
+                box.hi.z - box.lo.z});  // no squares: no underflow
+  const double scale = size > 0 && std::isfinite(1.0 / size) ? 1.0 / size : 1.0;
   auto point = [&](int32_t id) {
-    const Vec3& p = id < first_new_id ? mesh.vertices[id]
-                                      : patch->new_vertices[id - first_new_id];
+    const Vec3 p = scale * (original(id) - center);
     return K::Point_3(p.x, p.y, p.z);
+  };
+  auto unscale = [&](const K::Point_3& p) {
+    return center + (1.0 / scale) * Vec3{p.x(), p.y(), p.z()};
   };
   SurfaceMesh sm;
   for (int32_t id : nb.global) sm.add_vertex(point(id));
@@ -165,15 +221,31 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
   }
   std::vector<FaceIndex> new_faces;
   std::vector<VertexIndex> new_vertices;
-  PMP::refine(sm, patch_faces, std::back_inserter(new_faces),
-              std::back_inserter(new_vertices),
-              CGAL::parameters::density_control_factor(options.density));
+  const size_t cap =
+      RefinedVertexCap(static_cast<size_t>(report->boundary_vertices),
+                       options.triangulate.memory_budget_bytes);
+  try {
+    PMP::refine(sm, patch_faces, std::back_inserter(new_faces),
+                CountingVertexOut{&new_vertices, cap, &ticker},
+                CGAL::parameters::density_control_factor(options.density));
+  } catch (const StopRefining& stop) {
+    if (!stop.status.ok()) return stop.status;
+    report->refine_ms = MsSince(t0);
+    report->reason = "refinement stopped past " + std::to_string(cap) +
+                     " new vertices, the most allowed for a hole of " +
+                     std::to_string(report->boundary_vertices) +
+                     " boundary vertices within the memory budget (density " +
+                     std::to_string(options.density) +
+                     "): kept the unrefined DOT patch";
+    report->patch_triangles = static_cast<int32_t>(patch->faces.size());
+    return OkStatus();
+  }
   report->refine_ms = MsSince(t0);
   report->refined_vertices = static_cast<int32_t>(new_vertices.size());
   if (!ticker.Poll()) return ticker.status();
 
   const HolePatch unrefined = *patch;
-  ExtractPatch(sm, is_context, nb.global, first_new_id, patch);
+  ExtractPatch(sm, is_context, nb.global, first_new_id, unscale, patch);
   if (options.stage == FillStage::kFair && !new_vertices.empty()) {
     t0 = std::chrono::steady_clock::now();
     std::vector<K::Point_3> refined;
@@ -188,7 +260,8 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
           "patch";
     } else {
       HolePatch faired = unrefined;
-      ExtractPatch(sm, is_context, nb.global, first_new_id, &faired);
+      ExtractPatch(sm, is_context, nb.global, first_new_id, unscale, &faired);
+      if (!ticker.Poll()) return ticker.status();
       const int64_t pairs =
           PatchIntersections(mesh, topology, first_new_id, faired);
       if (pairs == 0) {

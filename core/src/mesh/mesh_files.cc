@@ -14,6 +14,7 @@
 
 #include "dot/io.h"
 #include "dot/triangulate.h"
+#include "util/run_control.h"
 
 namespace dot {
 namespace {
@@ -30,22 +31,29 @@ std::string LowerExtension(const std::string& path) {
 // A polygon's triangles: DOT's minimal-area triangulation of its corners
 // (planar polygons go through the 2D constrained Delaunay triangulation),
 // or a fan when DOT refuses it (e.g. a polygon that repeats a corner).
-void TriangulatePolygon(const PolygonSoup& soup, const std::vector<int32_t>& f,
-                        std::vector<Triangle>* out) {
+// Fails only when `control` stops the run.
+Status TriangulatePolygon(const PolygonSoup& soup,
+                          const std::vector<int32_t>& f, const Control& control,
+                          std::vector<Triangle>* out) {
   if (f.size() > 3) {
     Problem p;
     for (int32_t v : f) p.vertices.push_back(soup.vertices[v]);
-    const Result r = Triangulate(p);
+    const Result r = Triangulate(p, Options{}, control);
+    if (r.status.code == StatusCode::kCancelled ||
+        r.status.code == StatusCode::kDeadlineExceeded) {
+      return r.status;
+    }
     if (r.status.ok() && r.inserted.empty()) {
       for (const Triangle& t : r.triangles) {
         out->push_back({f[t[0]], f[t[1]], f[t[2]]});
       }
-      return;
+      return OkStatus();
     }
   }
   for (size_t k = 1; k + 1 < f.size(); ++k) {
     out->push_back({f[0], f[k], f[k + 1]});
   }
+  return OkStatus();
 }
 
 // CGAL 5.5's PLY reader trusts the header where only its debug assertions
@@ -237,15 +245,24 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
 }
 
 Status TriangulateSoup(const PolygonSoup& soup, MeshData* out) {
+  return TriangulateSoup(soup, Control{}, out);
+}
+
+Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
+                       MeshData* out) {
   out->vertices = soup.vertices;
   out->triangles.clear();
+  RunTicker ticker(control, "the triangulation of the mesh's polygons");
   for (size_t f = 0; f < soup.faces.size(); ++f) {
     if (soup.faces[f].size() < 3) {
       return InvalidArgument("face " + std::to_string(f) + " has " +
                              std::to_string(soup.faces[f].size()) +
                              " corners; a face needs at least 3");
     }
-    TriangulatePolygon(soup, soup.faces[f], &out->triangles);
+    if (!ticker.Tick()) return ticker.status();
+    const Status s =
+        TriangulatePolygon(soup, soup.faces[f], control, &out->triangles);
+    if (!s.ok()) return s;
   }
   return OkStatus();
 }

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "mesh/edge_index.h"
+#include "util/run_control.h"
 
 namespace dot {
 namespace {
@@ -161,12 +162,19 @@ std::string RepairReport::Summary() const {
 
 Status RepairMesh(const PolygonSoup& soup, MeshData* out,
                   RepairReport* report) {
+  return RepairMesh(soup, Control{}, out, report);
+}
+
+Status RepairMesh(const PolygonSoup& soup, const Control& control,
+                  MeshData* out, RepairReport* report) {
   *report = {};
+  RunTicker ticker(control, "the repair of the mesh");
   // Merge identical coordinates, first occurrence first.
   PolygonSoup merged;
   std::unordered_map<Vec3, int32_t, VecHash> first;
   report->vertex_map.resize(soup.vertices.size());
   for (size_t i = 0; i < soup.vertices.size(); ++i) {
+    if (!ticker.Tick()) return ticker.status();
     auto [it, added] = first.emplace(
         soup.vertices[i], static_cast<int32_t>(merged.vertices.size()));
     if (added) {
@@ -177,6 +185,7 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
     report->vertex_map[i] = it->second;
   }
   for (size_t i = 0; i < soup.faces.size(); ++i) {
+    if (!ticker.Tick()) return ticker.status();
     const auto& face = soup.faces[i];
     std::vector<int32_t> f;
     for (int32_t v : face) {
@@ -201,8 +210,9 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
     merged.faces.push_back(std::move(f));
   }
   MeshData tri;
-  Status s = TriangulateSoup(merged, &tri);
+  Status s = TriangulateSoup(merged, control, &tri);
   if (!s.ok()) return s;
+  if (!ticker.Poll()) return ticker.status();
   out->vertices = std::move(tri.vertices);
   out->triangles.clear();
   // Duplicates by sorting (corner set, position): the first one is kept.
@@ -219,6 +229,7 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
     if (keys[k].first == keys[k - 1].first) duplicate[keys[k].second] = true;
   }
   keys = {};
+  if (!ticker.Poll()) return ticker.status();
   for (size_t f = 0; f < tri.triangles.size(); ++f) {
     const Triangle& t = tri.triangles[f];
     if (ZeroArea(out->vertices, t)) {
@@ -229,8 +240,17 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
       out->triangles.push_back(t);
     }
   }
+  if (out->triangles.empty()) {
+    return InvalidArgument(
+        "nothing is left of the mesh after repair: its " +
+        std::to_string(soup.faces.size()) + " faces are all degenerate (" +
+        std::to_string(report->degenerate_faces) + ") or duplicates (" +
+        std::to_string(report->duplicate_faces) + ")");
+  }
+  if (!ticker.Poll()) return ticker.status();
   s = Orient(out->vertices, &out->triangles, report);
   if (!s.ok()) return s;
+  if (!ticker.Poll()) return ticker.status();
   report->non_manifold_vertices =
       CountNonManifoldVertices(out->vertices.size(), out->triangles);
   return OkStatus();

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <string>
+#include <string_view>
 
 #include "dot/status.h"
 #include "dot/triangulate.h"
@@ -30,7 +31,15 @@ inline bool StopRequested(const Control& control) {
 class RunTicker {
  public:
   RunTicker(const Control& control, Stage stage)
-      : control_(control), stage_(stage) {}
+      : control_(control), stage_(stage), activity_(StageName(stage)) {}
+  // For work that is not one of the polygon pipeline's stages (repair, the
+  // border walk, refinement, ...): `activity` names it in the deadline
+  // message and must outlive the ticker; no progress is reported.
+  RunTicker(const Control& control, std::string_view activity)
+      : control_(control),
+        stage_(Stage::kValidate),
+        activity_(activity),
+        reports_progress_(false) {}
 
   // Returns false once the run must stop; status() then says why.
   bool Tick(double fraction_done = -1) {
@@ -45,12 +54,12 @@ class RunTicker {
     }
     const auto now = std::chrono::steady_clock::now();
     if (now >= control_.deadline) {
-      status_ = MakeStatus(
-          StatusCode::kDeadlineExceeded,
-          "deadline exceeded during " + std::string(StageName(stage_)));
+      status_ =
+          MakeStatus(StatusCode::kDeadlineExceeded,
+                     "deadline exceeded during " + std::string(activity_));
       return false;
     }
-    if (control_.progress && fraction_done >= 0 &&
+    if (reports_progress_ && control_.progress && fraction_done >= 0 &&
         now - last_report_ >= std::chrono::milliseconds(50)) {
       last_report_ = now;
       control_.progress(stage_, fraction_done);
@@ -63,6 +72,8 @@ class RunTicker {
   static constexpr int kStride = 4096;
   const Control& control_;
   Stage stage_;
+  std::string_view activity_;
+  bool reports_progress_ = true;
   int count_ = 0;
   std::chrono::steady_clock::time_point last_report_{};
   Status status_;
