@@ -30,17 +30,23 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
   FillOutcome out;
   FillOptions options;
   Status s = wire::FillOptionsFromWire(wire_options, &options);
+  // The request's time budget holds here as on a server.
+  Control control;
+  if (wire_options.time_budget_ms() > 0) {
+    control.deadline =
+        t0 + std::chrono::milliseconds(wire_options.time_budget_ms());
+  }
   MeshData mesh;
   RepairReport repair;
   if (s.ok()) {
-    s = wire_options.no_repair() ? TriangulateSoup(soup, &mesh)
-                                 : RepairMesh(soup, &mesh, &repair);
+    s = wire_options.no_repair() ? TriangulateSoup(soup, control, &mesh)
+                                 : RepairMesh(soup, control, &mesh, &repair);
   }
   if (!s.ok()) {
     out.status = wire::ToGrpcStatus(s);
     return out;
   }
-  FillResult r = FillHoles(mesh, options);
+  FillResult r = FillHoles(mesh, options, control);
   out.status = wire::ToGrpcStatus(r.status);
   if (r.status.ok()) {
     wire::FillReportToWire(r.report, repair, mesh.vertices.size(),

@@ -100,8 +100,9 @@ Status FillHolesReactor::Fill(Job& job, const Control& control) {
   options.all_space_max_vertices = job.options.all_space_max_vertices;
   options.threads = runner_->compute_threads();
   MeshData mesh;
-  s = reader_.options().no_repair() ? TriangulateSoup(soup_, &mesh)
-                                    : RepairMesh(soup_, &mesh, &repair_);
+  s = reader_.options().no_repair()
+          ? TriangulateSoup(soup_, control, &mesh)
+          : RepairMesh(soup_, control, &mesh, &repair_);
   soup_ = {};
   if (!s.ok()) return s;
   input_vertices_ = mesh.vertices.size();

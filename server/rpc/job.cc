@@ -128,32 +128,34 @@ std::shared_ptr<Job> JobRunner::AdmitTask(
 
 bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
                           std::function<Status(Job&, const Control&)> work) {
-  const bool queued = pool_->TrySubmit([this, job, work = std::move(work)] {
-    job->started = Clock::now();
-    metrics_->queue_depth().Set(pool_->queued());
-    metrics_->busy_threads().Set(pool_->busy());
-    if (job->cancel) {
-      job->result.status =
-          MakeStatus(StatusCode::kCancelled, "cancelled while queued");
-    } else if (job->started >= job->deadline) {
-      job->result.status = MakeStatus(StatusCode::kDeadlineExceeded,
-                                      "deadline passed in the queue");
-    } else {
-      try {
-        job->result.status = work(*job, ControlFor(*job));
-      } catch (const std::exception& e) {  // bad_alloc above all
-        job->result.status =
-            MakeStatus(StatusCode::kResourceExhausted,
-                       std::string("computation failed: ") + e.what());
-      }
-    }
-    job->finished = Clock::now();
-    ReturnFreedMemory();
-    job->ran = true;
-    metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
-    std::function<void()> done = std::move(job->on_done);
-    done();
-  });
+  const bool queued = pool_->TrySubmit(
+      [this, job, work = std::move(work)] {
+        job->started = Clock::now();
+        metrics_->queue_depth().Set(pool_->queued());
+        metrics_->busy_threads().Set(pool_->busy());
+        if (job->cancel) {
+          job->result.status =
+              MakeStatus(StatusCode::kCancelled, "cancelled while queued");
+        } else if (job->started >= job->deadline) {
+          job->result.status = MakeStatus(StatusCode::kDeadlineExceeded,
+                                          "deadline passed in the queue");
+        } else {
+          try {
+            job->result.status = work(*job, ControlFor(*job));
+          } catch (const std::exception& e) {  // bad_alloc above all
+            job->result.status =
+                MakeStatus(StatusCode::kResourceExhausted,
+                           std::string("computation failed: ") + e.what());
+          }
+        }
+        job->finished = Clock::now();
+        ReturnFreedMemory();
+        job->ran = true;
+        metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
+        std::function<void()> done = std::move(job->on_done);
+        done();
+      },
+      Lane::kLarge);
   metrics_->queue_depth().Set(pool_->queued());
   return queued;
 }
@@ -177,7 +179,12 @@ bool JobRunner::Start(const std::shared_ptr<Job>& job, bool may_run_here) {
   if (may_run_here && pool_->TryRunHere([this, &job] { Run(*job); })) {
     return true;
   }
-  const bool queued = pool_->TrySubmit([this, job] { Run(*job); });
+  const Lane lane =
+      job->problem.vertices.size() >=
+              static_cast<size_t>(options_.large_lane_min_vertices)
+          ? Lane::kLarge
+          : Lane::kSmall;
+  const bool queued = pool_->TrySubmit([this, job] { Run(*job); }, lane);
   metrics_->queue_depth().Set(pool_->queued());
   return queued;
 }

@@ -36,6 +36,10 @@ struct ServiceOptions {
   // run cannot see a cancel before it ends (gRPC delivers OnCancel only
   // after the handler returns), so keep it small. 0: never.
   int inline_max_vertices = 500;
+  // Polygons of at least this many vertices queue in the compute pool's
+  // large lane with FillHoles calls (see compute/compute_pool.h): small
+  // calls go first and always keep a slot of their own.
+  int large_lane_min_vertices = 20000;
   // Freed memory the allocator keeps for the next requests (at most 1 GiB;
   // main() sets glibc's thresholds from it); after a request that needed
   // more, the excess is returned to the kernel. 0: glibc's defaults.
