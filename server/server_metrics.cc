@@ -62,6 +62,13 @@ ServerMetrics::ServerMetrics(const MetricsOptions& options)
                        "Requests (batch items count one each) by RPC and "
                        "final status")
                    .Register(*registry_);
+  stopped_ = &prometheus::BuildCounter()
+                  .Name("dot_requests_stopped_total")
+                  .Help(
+                      "Requests stopped before they finished, by RPC and "
+                      "reason (client_cancel, client_deadline, "
+                      "server_budget, drain, client_gone)")
+                  .Register(*registry_);
   latency_ = &prometheus::BuildHistogram()
                   .Name("dot_request_duration_seconds")
                   .Help("Time from arrival to the last byte of the answer")
@@ -116,6 +123,11 @@ void ServerMetrics::RequestDone(const std::string& rpc,
       0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
       0.5,   1,      2.5,   5,    10,    30,   60};
   latency_->Add({{"rpc", rpc}}, kBuckets).Observe(seconds);
+}
+
+void ServerMetrics::RequestStopped(const std::string& rpc,
+                                   const std::string& reason) {
+  stopped_->Add({{"rpc", rpc}, {"reason", reason}}).Increment();
 }
 
 void ServerMetrics::HelperStarts(int64_t total) {

@@ -34,6 +34,9 @@ class ServerMetrics {
 
   void RequestDone(const std::string& rpc, const std::string& status,
                    double seconds);
+  // A call stopped before it finished, by reason (client_cancel,
+  // client_deadline, server_budget, drain, client_gone).
+  void RequestStopped(const std::string& rpc, const std::string& reason);
   prometheus::Gauge& queue_depth() { return *queue_depth_; }
   prometheus::Gauge& inflight() { return *inflight_; }
   prometheus::Gauge& busy_threads() { return *busy_threads_; }
@@ -47,6 +50,7 @@ class ServerMetrics {
   std::shared_ptr<prometheus::Registry> registry_;
   std::unique_ptr<prometheus::Exposer> exposer_;
   prometheus::Family<prometheus::Counter>* requests_;
+  prometheus::Family<prometheus::Counter>* stopped_;
   prometheus::Family<prometheus::Histogram>* latency_;
   prometheus::Gauge* queue_depth_;
   prometheus::Gauge* inflight_;

@@ -42,6 +42,10 @@ class FillRequestReader {
   Status Finish(PolygonSoup* soup);
   const std::string& id() const { return id_; }
   const v1::FillOptions& options() const { return options_; }
+  // What has arrived so far.
+  size_t vertices() const { return soup_.vertices.size(); }
+  size_t faces() const { return soup_.faces.size(); }
+  size_t messages() const { return messages_; }
 
  private:
   static constexpr uint32_t kMaxPolygonCorners = 1000;

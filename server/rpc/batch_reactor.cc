@@ -83,7 +83,7 @@ void BatchReactor::OnWriteDone(bool ok) {
   {
     std::lock_guard<std::mutex> lock(mu_);
     writing_ = false;
-    if (!ok) Stop({grpc::StatusCode::CANCELLED, "the client went away"});
+    if (!ok) Stop(StopReason::kClientGone);
     if (current_ && (current_->written || !ok)) {
       const grpc::Status status = !ok ? final_status_
                                   : !current_->refused.ok()
@@ -100,16 +100,18 @@ void BatchReactor::OnWriteDone(bool ok) {
 void BatchReactor::OnCancel() {
   {
     std::lock_guard<std::mutex> lock(mu_);
-    Stop({grpc::StatusCode::CANCELLED, "cancelled by the client"});
+    Stop(std::chrono::system_clock::now() >= context_->deadline()
+             ? StopReason::kClientDeadline
+             : StopReason::kClientCancel);
   }
   Pump();
 }
 
-void BatchReactor::Stop(const grpc::Status& status) {
+void BatchReactor::Stop(StopReason why) {
   if (stopped_) return;
   stopped_ = true;
-  final_status_ = status;
-  for (const auto& job : running_) job->cancel = true;
+  final_status_ = StoppedStatus(why);
+  for (const auto& job : running_) job->Stop(why);
 }
 
 bool BatchReactor::TakeNextItem(std::vector<Answer>* answered) {

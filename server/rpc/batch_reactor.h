@@ -63,7 +63,7 @@ class BatchReactor final
   // With the write right (writing_): fills message_ from current_ and
   // starts the write. The mesh is serialized outside mu_.
   void WriteCurrent();
-  void Stop(const grpc::Status& status);  // under mu_: cancel or broken
+  void Stop(StopReason why);  // under mu_: cancel or broken
 
   JobRunner* const runner_;
   grpc::CallbackServerContext* const context_;

@@ -1,12 +1,23 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/fill_holes_reactor.h"
 
+#include <grpcpp/impl/codegen/proto_utils.h>
+
+#include <algorithm>
+
 #include "rpc/job_response.h"
 
 namespace dot::server {
 namespace {
 
 constexpr auto kProgressInterval = std::chrono::milliseconds(250);
+
+// `t`, a steady-clock time, on the system clock gRPC's timers use.
+std::chrono::system_clock::time_point ToSystem(Clock::time_point t) {
+  return std::chrono::system_clock::now() +
+         std::chrono::duration_cast<std::chrono::system_clock::duration>(
+             t - Clock::now());
+}
 
 }  // namespace
 
@@ -15,62 +26,144 @@ FillHolesReactor::FillHolesReactor(JobRunner* runner,
     : runner_(runner),
       context_(context),
       reader_(static_cast<size_t>(runner->options().fill_max_vertices),
-              static_cast<size_t>(runner->options().fill_max_faces)) {
+              static_cast<size_t>(runner->options().fill_max_faces)),
+      timer_guard_(std::make_shared<TimerGuard>()) {
+  timer_guard_->reactor = this;
+  // A client that opens the stream and sends nothing holds it no longer
+  // than the server's time limit (or its own deadline).
+  const auto limit =
+      std::min(context_->deadline(),
+               std::chrono::system_clock::now() +
+                   std::chrono::milliseconds(runner->options().max_compute_ms));
+  SetTimer(&first_message_timer_, limit);
   StartRead(&request_);
 }
 
+void FillHolesReactor::SetTimer(grpc::Alarm* timer,
+                                std::chrono::system_clock::time_point when) {
+  timer->Set(when, [guard = timer_guard_](bool fired) {
+    std::lock_guard<std::mutex> lock(guard->mu);
+    if (fired && guard->reactor) guard->reactor->OnUploadTimer();
+  });
+}
+
 void FillHolesReactor::OnReadDone(bool ok) {
-  if (ok) {
-    if (!job_) {
-      grpc::Status refused;
-      auto job = runner_->AdmitTask("FillHoles", request_.id(),
-                                    request_.options().time_budget_ms(),
-                                    context_->deadline(), &refused);
-      {
-        std::lock_guard<std::mutex> lock(mu_);
-        job_ = std::move(job);
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (finished_) return;
+    if (!ok) uploading_ = false;
+  }
+  if (!ok) {
+    // The client half-closed, or the call broke.
+    if (context_->IsCancelled()) {
+      if (job_) {
+        job_->StopForCancel(context_->deadline());
+        FinishWith(StoppedStatus(job_->stop));
+      } else {
+        FinishWith(StoppedStatus(StopReason::kClientCancel));
       }
-      if (!refused.ok()) {
-        FinishWith(refused);
-        return;
-      }
-      // Options are checked before the mesh is read, not after.
-      FillOptions options;
-      const Status s = wire::FillOptionsFromWire(request_.options(), &options);
-      if (!s.ok()) {
-        FinishWith(wire::ToGrpcStatus(s));
-        return;
-      }
-    }
-    // A slow upload is bound by the same deadline, drain and cancel as the
-    // fill itself.
-    if (job_->cancel) {
-      FinishWith(job_->drained
-                     ? grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                                    "server is shutting down; retry on "
-                                    "another replica")
-                     : grpc::Status(grpc::StatusCode::CANCELLED,
-                                    "cancelled by the client"));
       return;
     }
-    if (Clock::now() >= job_->deadline) {
-      FinishWith({grpc::StatusCode::DEADLINE_EXCEEDED,
-                  "the mesh did not arrive within the time limit"});
-      return;
-    }
-    const Status s = reader_.Add(request_);
-    if (!s.ok()) {
-      FinishWith(wire::ToGrpcStatus(s));
-      return;
-    }
-    StartRead(&request_);
+    StartFill();
     return;
   }
-  // The client half-closed (or went away): the mesh is complete.
-  if (context_->IsCancelled()) {
-    FinishWith({grpc::StatusCode::CANCELLED, "the client went away"});
+  const grpc::Status s = Accept();
+  if (!s.ok()) {
+    FinishWith(s);
     return;
   }
+  StartRead(&request_);
+}
+
+grpc::Status FillHolesReactor::Accept() {
+  v1::FillHolesRequest m;
+  const size_t position = reader_.messages();
+  if (!grpc::SerializationTraits<v1::FillHolesRequest>::Deserialize(&request_,
+                                                                    &m)
+           .ok()) {
+    // Before: the upload ended there as if the client had half-closed, and
+    // the partial mesh was filled and answered OK.
+    return {grpc::StatusCode::INVALID_ARGUMENT,
+            "message " + std::to_string(position) +
+                " of the upload does not parse as a FillHolesRequest"};
+  }
+  if (!job_) {
+    grpc::Status refused;
+    auto job =
+        runner_->AdmitTask("FillHoles", m.id(), m.options().time_budget_ms(),
+                           context_->deadline(), &refused);
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      job_ = std::move(job);
+    }
+    if (!refused.ok()) return refused;
+    // Options are checked before the mesh is read, not after.
+    FillOptions options;
+    const Status s = wire::FillOptionsFromWire(m.options(), &options);
+    if (!s.ok()) return wire::ToGrpcStatus(s);
+    SetTimer(&upload_timer_, ToSystem(job_->deadline));
+    // A drain ends an unfinished upload at once (from a gRPC thread).
+    runner_->SetOnDrain(job_.get(), [this] {
+      SetTimer(&drain_timer_, std::chrono::system_clock::now());
+    });
+  }
+  // A slow upload is bound by the same deadline, drain and cancel as the
+  // fill itself.
+  if (job_->cancel) return StoppedStatus(job_->stop);
+  if (Clock::now() >= job_->deadline) {
+    job_->Stop(job_->deadline_is_limit ? StopReason::kServerBudget
+                                       : StopReason::kClientDeadline);
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "the mesh did not arrive within the time limit"};
+  }
+  const Status s = reader_.Add(m);
+  if (!s.ok()) return wire::ToGrpcStatus(s);
+  const int64_t bytes =
+      FillMemoryBytes(static_cast<int64_t>(reader_.vertices()),
+                      static_cast<int64_t>(reader_.faces()));
+  if (!ChargeUpTo(bytes)) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "the server's memory for FillHoles calls (" +
+                std::to_string(runner_->options().fill_memory_bytes >> 20) +
+                " MiB) is taken by other calls; this mesh needs about " +
+                std::to_string(bytes >> 20) + " MiB so far; retry later"};
+  }
+  return grpc::Status::OK;
+}
+
+bool FillHolesReactor::ChargeUpTo(int64_t bytes) {
+  if (bytes <= charged_) return true;
+  if (!runner_->ChargeFillMemory(bytes - charged_)) return false;
+  charged_ = bytes;
+  return true;
+}
+
+void FillHolesReactor::OnUploadTimer() {
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (!uploading_ || finished_) return;
+    job = job_;
+  }
+  if (job && job->stop == StopReason::kNone && Clock::now() < job->deadline &&
+      runner_->draining()) {
+    job->Stop(StopReason::kDrain);
+  }
+  if (job && job->stop == StopReason::kDrain) {
+    FinishWith(StoppedStatus(StopReason::kDrain));
+    return;
+  }
+  if (job) {
+    job->Stop(job->deadline_is_limit ? StopReason::kServerBudget
+                                     : StopReason::kClientDeadline);
+  }
+  FinishWith({grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the mesh did not arrive within the time limit (" +
+                  std::to_string(reader_.messages()) +
+                  " messages arrived, and no end of the upload)"});
+}
+
+void FillHolesReactor::StartFill() {
   const Status s = reader_.Finish(&soup_);
   if (!s.ok() || !job_) {
     FinishWith(
@@ -81,6 +174,7 @@ void FillHolesReactor::OnReadDone(bool ok) {
   if (!runner_->StartTask(job_, [this](Job& job, const Control& control) {
         return Fill(job, control);
       })) {
+    job_->on_done = nullptr;
     FinishWith(runner_->Overloaded());
   }
 }
@@ -122,7 +216,7 @@ void FillHolesReactor::OnHole(int done, int total) {
   {
     std::lock_guard<std::mutex> lock(mu_);
     const auto now = Clock::now();
-    if (writing_ || job_done_ || broken_ ||
+    if (writing_ || job_done_ || broken_ || finished_ ||
         (now - last_progress_ < kProgressInterval && done < total)) {
       return;
     }
@@ -136,7 +230,7 @@ void FillHolesReactor::OnHole(int done, int total) {
     p->set_elapsed_ms(
         std::chrono::duration<double, std::milli>(now - job_->arrived).count());
   }
-  StartWrite(&message_);
+  Write(message_, false);
 }
 
 void FillHolesReactor::OnJobDone() {
@@ -154,7 +248,7 @@ void FillHolesReactor::OnWriteDone(bool ok) {
     std::lock_guard<std::mutex> lock(mu_);
     if (!ok) {
       broken_ = true;
-      if (job_) job_->cancel = true;
+      if (job_) job_->Stop(StopReason::kClientGone);
     }
     if (!job_done_) {  // a progress report; the job carries on
       writing_ = false;
@@ -171,7 +265,7 @@ void FillHolesReactor::WriteNext() {
     broken = broken_;
   }
   if (broken) {
-    FinishWith({grpc::StatusCode::CANCELLED, "the client went away"});
+    FinishWith(StoppedStatus(job_->stop));
     return;
   }
   if (!chunks_) {
@@ -187,34 +281,67 @@ void FillHolesReactor::WriteNext() {
   message_.Clear();
   message_.set_id(job_->id);
   if (chunks_->Next(message_.mutable_mesh())) {
-    StartWrite(&message_);
+    Write(message_, false);
     return;
   }
   wire::FillReportToWire(result_.report, repair_, input_vertices_, input_faces_,
                          message_.mutable_report());
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (finished_) return;
+    finished_ = true;
+  }
   final_status_ = grpc::Status::OK;
-  StartWriteAndFinish(&message_, grpc::WriteOptions(), final_status_);
+  Write(message_, true);
+}
+
+void FillHolesReactor::Write(const v1::FillHolesResponse& message, bool last) {
+  message_bytes_.Clear();  // Serialize wants an empty buffer
+  bool own_buffer = false;
+  grpc::SerializationTraits<v1::FillHolesResponse>::Serialize(
+      message, &message_bytes_, &own_buffer);
+  if (last) {
+    StartWriteAndFinish(&message_bytes_, grpc::WriteOptions(), final_status_);
+  } else {
+    StartWrite(&message_bytes_);
+  }
 }
 
 void FillHolesReactor::FinishWith(const grpc::Status& status) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (finished_) return;
+    finished_ = true;
+    uploading_ = false;
+  }
   final_status_ = status;
   Finish(status);
 }
 
 void FillHolesReactor::OnCancel() {
-  std::lock_guard<std::mutex> lock(mu_);
-  if (job_) job_->cancel = true;
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    job = job_;
+  }
+  if (job) job->StopForCancel(context_->deadline());
 }
 
 void FillHolesReactor::OnDone() {
-  if (final_status_.ok() && context_->IsCancelled()) {
-    final_status_ = {grpc::StatusCode::CANCELLED, "the client went away"};
+  {
+    std::lock_guard<std::mutex> lock(timer_guard_->mu);
+    timer_guard_->reactor = nullptr;  // a timer firing now finds nobody
   }
   if (!job_) {
     grpc::Status ignored;
     job_ =
         runner_->AdmitTask("FillHoles", "", 0, context_->deadline(), &ignored);
   }
+  if (final_status_.ok() && context_->IsCancelled()) {
+    if (job_->stop == StopReason::kNone) job_->Stop(StopReason::kClientGone);
+    final_status_ = StoppedStatus(job_->stop);
+  }
+  runner_->ReleaseFillMemory(charged_);
   runner_->Answered(*job_, final_status_);
   delete this;  // gRPC's callback API: a reactor owns itself until OnDone
 }

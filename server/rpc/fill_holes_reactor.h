@@ -3,9 +3,16 @@
 // runs on the compute pool as one job, and progress per hole, the filled
 // mesh in chunks and the report stream back. The reactor finishes only
 // after the job's on_done, so the job never outlives it.
+//
+// Messages travel raw (grpc::ByteBuffer) and are parsed here, so that a
+// message that does not parse is an error naming its position, not an end
+// of the upload. The upload is bounded by timers (the first message within
+// the server's limit, the rest within the job's deadline), not by the next
+// message, and is charged to the server's FillHoles memory as it arrives.
 #ifndef DOT_SERVER_RPC_FILL_HOLES_REACTOR_H_
 #define DOT_SERVER_RPC_FILL_HOLES_REACTOR_H_
 
+#include <grpcpp/alarm.h>
 #include <grpcpp/grpcpp.h>
 
 #include <memory>
@@ -21,8 +28,7 @@
 namespace dot::server {
 
 class FillHolesReactor final
-    : public grpc::ServerBidiReactor<v1::FillHolesRequest,
-                                     v1::FillHolesResponse> {
+    : public grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer> {
  public:
   FillHolesReactor(JobRunner* runner, grpc::CallbackServerContext* context);
 
@@ -32,6 +38,10 @@ class FillHolesReactor final
   void OnDone() override;
 
  private:
+  // One message of the upload; not OK ends the call with that status.
+  grpc::Status Accept();
+  // The upload is complete: the fill is queued.
+  void StartFill();
   // The fill itself, on a compute thread.
   Status Fill(Job& job, const Control& control);
   // Called on the computing threads.
@@ -40,14 +50,25 @@ class FillHolesReactor final
   // Writes the next message of the answer, or finishes. Only ever called
   // by whoever holds the (single) right to write.
   void WriteNext();
+  void Write(const v1::FillHolesResponse& message, bool last);
+  // Finishes the call once; later calls are ignored.
   void FinishWith(const grpc::Status& status);
+  // An upload timer fired: the mesh did not arrive in time, or the server
+  // began to drain.
+  void OnUploadTimer();
+  // Sets `timer` to call OnUploadTimer at `when`, if the reactor is alive.
+  void SetTimer(grpc::Alarm* timer, std::chrono::system_clock::time_point when);
+  // Brings the memory charge up to `bytes`; false when the server's
+  // FillHoles memory is spent.
+  bool ChargeUpTo(int64_t bytes);
 
   JobRunner* const runner_;
   grpc::CallbackServerContext* const context_;
   wire::FillRequestReader reader_;
-  v1::FillHolesRequest request_;  // the message being read
+  grpc::ByteBuffer request_;  // the read in flight
   std::shared_ptr<Job> job_;
   grpc::Status final_status_;
+  int64_t charged_ = 0;  // FillHoles memory held by this call
 
   // Input and output of the fill; touched by the compute thread only while
   // the job runs, by the reactor only before and after.
@@ -57,15 +78,25 @@ class FillHolesReactor final
   size_t input_vertices_ = 0, input_faces_ = 0;
 
   std::mutex mu_;
+  bool uploading_ = true;  // reads go on; the timers may end the call
+  bool finished_ = false;  // Finish was called
   bool writing_ = false;   // a write is in flight
   bool job_done_ = false;  // on_done has run
   bool broken_ = false;    // a write failed: the client is gone
   Clock::time_point last_progress_{};
-  v1::FillProgress pending_;
 
   std::optional<wire::MeshChunker> chunks_;
-  bool report_sent_ = false;
-  v1::FillHolesResponse message_;  // the message being written
+  v1::FillHolesResponse message_;   // the message being written
+  grpc::ByteBuffer message_bytes_;  // message_, serialized
+
+  // The timers call back on gRPC's threads; the shared guard lets a late
+  // callback find the reactor gone instead of touching freed memory.
+  struct TimerGuard {
+    std::mutex mu;
+    FillHolesReactor* reactor;
+  };
+  std::shared_ptr<TimerGuard> timer_guard_;
+  grpc::Alarm first_message_timer_, upload_timer_, drain_timer_;
 };
 
 }  // namespace dot::server

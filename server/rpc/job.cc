@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
 
 #include "rpc/request_log.h"
 #include "wire/wire.h"
@@ -33,6 +34,15 @@ void SetDeadline(const ServiceOptions& o, uint32_t budget_ms,
   if (steady < job->deadline) {
     job->deadline = steady;
     job->deadline_is_limit = false;
+  }
+}
+
+// A run the core stopped at the job's deadline was stopped by whoever set
+// that deadline.
+void NoteDeadline(Job& job) {
+  if (job.result.status.code == StatusCode::kDeadlineExceeded) {
+    job.Stop(job.deadline_is_limit ? StopReason::kServerBudget
+                                   : StopReason::kClientDeadline);
   }
 }
 
@@ -149,6 +159,7 @@ bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
           }
         }
         job->finished = Clock::now();
+        NoteDeadline(*job);
         ReturnFreedMemory();
         job->ran = true;
         metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
@@ -254,6 +265,7 @@ void JobRunner::Run(Job& job) {
   }
   job.result = std::move(result);
   job.finished = Clock::now();
+  NoteDeadline(job);
   const Stats& st = job.result.stats;
   if (st.estimated_bytes > options_.malloc_keep_bytes / 8 ||
       st.tetrahedra > 1000000 ||
@@ -269,6 +281,34 @@ void JobRunner::Run(Job& job) {
   done();
 }
 
+bool JobRunner::ChargeFillMemory(int64_t bytes) {
+  int64_t held = fill_memory_.load();
+  do {
+    if (held + bytes > options_.fill_memory_bytes) return false;
+  } while (!fill_memory_.compare_exchange_weak(held, held + bytes));
+  return true;
+}
+
+void JobRunner::ReleaseFillMemory(int64_t bytes) { fill_memory_ -= bytes; }
+
+std::string_view StopReasonName(StopReason r) {
+  switch (r) {
+    case StopReason::kNone:
+      return "none";
+    case StopReason::kClientCancel:
+      return "client_cancel";
+    case StopReason::kClientDeadline:
+      return "client_deadline";
+    case StopReason::kServerBudget:
+      return "server_budget";
+    case StopReason::kDrain:
+      return "drain";
+    case StopReason::kClientGone:
+      return "client_gone";
+  }
+  return "?";
+}
+
 void JobRunner::ReturnFreedMemory() {
   const int64_t keep = options_.malloc_keep_bytes;
   if (keep <= 0) return;
@@ -282,12 +322,26 @@ void JobRunner::Answered(const Job& job, const grpc::Status& status) {
   LogRequest(job, status, metrics_);
 }
 
+void JobRunner::StartDraining() {
+  std::lock_guard<std::mutex> lock(jobs_mu_);
+  draining_ = true;
+  for (Job* job : jobs_) {
+    if (job->on_drain) std::exchange(job->on_drain, nullptr)();
+  }
+}
+
+void JobRunner::SetOnDrain(Job* job, std::function<void()> on_drain) {
+  std::lock_guard<std::mutex> lock(jobs_mu_);
+  if (draining_) {
+    on_drain();
+  } else {
+    job->on_drain = std::move(on_drain);
+  }
+}
+
 void JobRunner::CancelAllForDrain() {
   std::lock_guard<std::mutex> lock(jobs_mu_);
-  for (Job* job : jobs_) {
-    job->drained = true;
-    job->cancel = true;
-  }
+  for (Job* job : jobs_) job->Stop(StopReason::kDrain);
 }
 
 }  // namespace dot::server

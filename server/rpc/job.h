@@ -16,6 +16,7 @@
 #include <mutex>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "compute/compute_pool.h"
 #include "dot/delaunay_helpers.h"
@@ -32,6 +33,18 @@ using Clock = std::chrono::steady_clock;
 // Request ids are echoed in every response and logged: keep them short.
 inline constexpr size_t kMaxRequestIdBytes = 256;
 
+// Why a job was stopped before it finished: logged, counted
+// (dot_requests_stopped_total) and answered each its own way.
+enum class StopReason {
+  kNone,
+  kClientCancel,    // the client cancelled the call
+  kClientDeadline,  // the client's deadline passed
+  kServerBudget,    // the server's compute limit or the request's budget
+  kDrain,           // the server is shutting down
+  kClientGone,      // a write to the client failed
+};
+std::string_view StopReasonName(StopReason r);  // "client_cancel", ...
+
 struct Job {
   std::string rpc, id;
   Problem problem;
@@ -40,7 +53,21 @@ struct Job {
   Clock::time_point arrived, started, finished, deadline;
   bool deadline_is_limit = false;  // the server's limit, not the client's
   std::atomic<bool> cancel{false};
-  std::atomic<bool> drained{false};  // cancelled by the server's drain
+  std::atomic<StopReason> stop{StopReason::kNone};  // the first reason wins
+
+  // Sets the cancel flag, recording why (unless a reason is already set).
+  void Stop(StopReason why) {
+    StopReason none = StopReason::kNone;
+    stop.compare_exchange_strong(none, why);
+    cancel = true;
+  }
+  // The reason a gRPC OnCancel means: the client's deadline if it has
+  // passed, else the client's cancel.
+  void StopForCancel(std::chrono::system_clock::time_point client_deadline) {
+    Stop(std::chrono::system_clock::now() >= client_deadline
+             ? StopReason::kClientDeadline
+             : StopReason::kClientCancel);
+  }
 
   // Written by the computing thread before on_done; read after it.
   bool ran = false;
@@ -52,6 +79,8 @@ struct Job {
   // Both run on the computing thread. on_done is the job's last act.
   std::function<void(const v1::Progress&)> on_progress;
   std::function<void()> on_done;
+  // Set through JobRunner::SetOnDrain.
+  std::function<void()> on_drain;
 };
 
 class JobRunner {
@@ -94,14 +123,23 @@ class JobRunner {
   // metrics and one log line.
   void Answered(const Job& job, const grpc::Status& status);
 
-  // New jobs are refused with UNAVAILABLE from now on.
-  void StartDraining() {
-    std::lock_guard<std::mutex> lock(jobs_mu_);
-    draining_ = true;
-  }
+  // New jobs are refused with UNAVAILABLE from now on, and every admitted
+  // job's on_drain runs (calls still uploading end at once: their clients
+  // retry elsewhere).
+  void StartDraining();
+  // Sets job->on_drain, called at most once, with the runner's lock held:
+  // it must only schedule work, never finish a call itself.
+  void SetOnDrain(Job* job, std::function<void()> on_drain);
   // Cancels every admitted job; their RPCs answer UNAVAILABLE.
   void CancelAllForDrain();
   int inflight() const { return inflight_; }
+  bool draining() const { return draining_; }
+
+  // FillHoles memory: a call charges what it holds before holding it
+  // (FillMemoryBytes of what it has sent); false, charging nothing, when
+  // all calls together would exceed options().fill_memory_bytes.
+  bool ChargeFillMemory(int64_t bytes);
+  void ReleaseFillMemory(int64_t bytes);
 
   int compute_threads() const { return pool_->threads(); }
   int queue_capacity() const { return pool_->capacity(); }
@@ -125,6 +163,7 @@ class JobRunner {
   ServerMetrics* metrics_;
   std::atomic<bool> draining_{false};
   std::atomic<int> inflight_{0};
+  std::atomic<int64_t> fill_memory_{0};
   std::mutex jobs_mu_;
   std::set<Job*> jobs_;  // admitted and not yet answered
 };

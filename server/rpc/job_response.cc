@@ -10,18 +10,34 @@ double Ms(Clock::duration d) {
 
 }  // namespace
 
-grpc::Status JobStatus(const Job& job, int max_compute_ms) {
-  const Status& s = job.result.status;
-  if (s.code == StatusCode::kCancelled) {
-    if (job.drained) {
+grpc::Status StoppedStatus(StopReason why) {
+  switch (why) {
+    case StopReason::kDrain:
       return {grpc::StatusCode::UNAVAILABLE,
               "server is shutting down; retry on another replica"};
-    }
-    return {grpc::StatusCode::CANCELLED, "cancelled by the client"};
+    case StopReason::kClientDeadline:
+      return {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the client's deadline passed"};
+    case StopReason::kServerBudget:
+      return {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the request's time limit passed"};
+    case StopReason::kClientGone:
+      return {grpc::StatusCode::CANCELLED,
+              "the client went away (a write to it failed)"};
+    case StopReason::kClientCancel:
+    case StopReason::kNone:
+      break;
   }
+  return {grpc::StatusCode::CANCELLED, "cancelled by the client"};
+}
+
+grpc::Status JobStatus(const Job& job, int max_compute_ms) {
+  const Status& s = job.result.status;
+  if (s.code == StatusCode::kCancelled) return StoppedStatus(job.stop);
   if (s.code == StatusCode::kDeadlineExceeded) {
     if (!job.deadline_is_limit) {
-      return {grpc::StatusCode::DEADLINE_EXCEEDED, s.message};
+      return {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the client's deadline passed (" + s.message + ")"};
     }
     return {grpc::StatusCode::DEADLINE_EXCEEDED,
             "compute time limit exceeded (" + s.message +

@@ -21,6 +21,9 @@ namespace dot::server {
 // failures map through wire::ToGrpcStatus; OK otherwise (also for "no
 // triangulation", which is an answer).
 grpc::Status JobStatus(const Job& job, int max_compute_ms);
+// The answer to a call stopped for `why`: each reason its own code and
+// message (the one place they are worded).
+grpc::Status StoppedStatus(StopReason why);
 
 class JobResponse {
  public:

@@ -50,11 +50,20 @@ void LogRequest(const Job& job, const grpc::Status& status,
     label = "NO_TRIANGULATION";
   }
   metrics->RequestDone(job.rpc, label, Ms(Clock::now() - job.arrived) / 1000);
+  const StopReason stop = job.stop;
+  if (stop != StopReason::kNone) {
+    metrics->RequestStopped(job.rpc, std::string(StopReasonName(stop)));
+  }
+  // Only a call that did not end OK was stopped, whatever came late.
+  const std::string stopped =
+      stop == StopReason::kNone || status.ok()
+          ? std::string()
+          : " stop=" + std::string(StopReasonName(stop));
   const bool ran = job.ran;
   if (!job.log_detail.empty()) {
     spdlog::info(
-        "rpc={} id=\"{}\" {} status={} queue_ms={:.1f} compute_ms={:.1f}{}{}",
-        job.rpc, EscapeForLog(job.id), job.log_detail, label,
+        "rpc={} id=\"{}\" {} status={}{} queue_ms={:.1f} compute_ms={:.1f}{}{}",
+        job.rpc, EscapeForLog(job.id), job.log_detail, label, stopped,
         ran ? Ms(job.started - job.arrived) : 0.0,
         ran ? Ms(job.finished - job.started) : 0.0,
         status.ok() ? "" : " message=\"",
@@ -62,13 +71,13 @@ void LogRequest(const Job& job, const grpc::Status& status,
     return;
   }
   spdlog::info(
-      "rpc={} id=\"{}\" n={} weights={} space={} status={} queue_ms={:.1f} "
-      "compute_ms={:.1f} triangles={}{}{}",
+      "rpc={} id=\"{}\" n={} weights={} space={} status={}{} "
+      "queue_ms={:.1f} compute_ms={:.1f} triangles={}{}{}",
       job.rpc, EscapeForLog(job.id), job.problem.vertices.size(),
       WeightsLabel(job.problem.weights),
       ran ? SpaceUsedName(job.result.space_used)
           : SearchSpaceName(job.options.space),
-      label, ran ? Ms(job.started - job.arrived) : 0.0,
+      label, stopped, ran ? Ms(job.started - job.arrived) : 0.0,
       ran ? Ms(job.finished - job.started) : 0.0,
       ran && status.ok() ? job.result.triangles.size() : 0,
       status.ok() ? "" : " message=\"",

@@ -61,7 +61,7 @@ void TriangulateReactor::OnWriteDone(bool ok) {
     std::lock_guard<std::mutex> lock(mu_);
     if (!ok) {
       broken_ = true;
-      job_->cancel = true;
+      job_->Stop(StopReason::kClientGone);
     }
     if (!job_done_) {  // a progress report; the job carries on
       writing_ = false;
@@ -78,7 +78,7 @@ void TriangulateReactor::WriteNext() {
     broken = broken_;
   }
   if (broken) {
-    FinishWith({grpc::StatusCode::CANCELLED, "the client went away"});
+    FinishWith(StoppedStatus(StopReason::kClientGone));
     return;
   }
   if (!response_) {
@@ -104,13 +104,16 @@ void TriangulateReactor::FinishWith(const grpc::Status& status) {
 }
 
 void TriangulateReactor::OnCancel() {
-  if (job_) job_->cancel = true;
+  if (job_) job_->StopForCancel(context_->deadline());
 }
 
 void TriangulateReactor::OnDone() {
   // StartWriteAndFinish reports no write failure: ask the context.
   if (final_status_.ok() && context_->IsCancelled()) {
-    final_status_ = {grpc::StatusCode::CANCELLED, "the client went away"};
+    if (job_->stop == StopReason::kNone) {
+      job_->StopForCancel(context_->deadline());
+    }
+    final_status_ = StoppedStatus(job_->stop);
   }
   runner_->Answered(*job_, final_status_);
   delete this;  // gRPC's callback API: a reactor owns itself until OnDone

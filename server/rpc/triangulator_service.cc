@@ -35,7 +35,7 @@ TriangulatorService::TriangulateBatch(grpc::CallbackServerContext* context) {
   return new BatchReactor(runner_, context);
 }
 
-grpc::ServerBidiReactor<v1::FillHolesRequest, v1::FillHolesResponse>*
+grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>*
 TriangulatorService::FillHoles(grpc::CallbackServerContext* context) {
   return new FillHolesReactor(runner_, context);
 }
@@ -67,6 +67,9 @@ grpc::ServerUnaryReactor* TriangulatorService::GetServerInfo(
   info->add_backends("cgal-5.5 constrained Delaunay 2D (planar polygons)");
   info->add_backends("all-triangles GK1/GK2");
   v1::Limits* l = info->mutable_limits();
+  l->set_fill_max_vertices(static_cast<uint64_t>(o.fill_max_vertices));
+  l->set_fill_max_faces(static_cast<uint64_t>(o.fill_max_faces));
+  l->set_fill_memory_bytes(static_cast<uint64_t>(o.fill_memory_bytes));
   l->set_max_vertices(o.max_vertices);
   l->set_max_compute_ms(o.max_compute_ms);
   l->set_memory_budget_bytes(o.solve.memory_budget_bytes);

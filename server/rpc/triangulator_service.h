@@ -21,7 +21,7 @@ using TriangulatorCallbackBase =
         v1::Triangulator::WithRawCallbackMethod_TriangulateBatch<
             v1::Triangulator::WithCallbackMethod_GetServerInfo<
                 v1::Triangulator::WithCallbackMethod_GetSource<
-                    v1::Triangulator::WithCallbackMethod_FillHoles<
+                    v1::Triangulator::WithRawCallbackMethod_FillHoles<
                         v1::Triangulator::Service>>>>>;
 
 class TriangulatorService final : public TriangulatorCallbackBase {
@@ -38,8 +38,8 @@ class TriangulatorService final : public TriangulatorCallbackBase {
   grpc::ServerUnaryReactor* GetServerInfo(
       grpc::CallbackServerContext* context,
       const v1::GetServerInfoRequest* request, v1::ServerInfo* info) override;
-  grpc::ServerBidiReactor<v1::FillHolesRequest, v1::FillHolesResponse>*
-  FillHoles(grpc::CallbackServerContext* context) override;
+  grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* FillHoles(
+      grpc::CallbackServerContext* context) override;
   grpc::ServerWriteReactor<v1::SourceChunk>* GetSource(
       grpc::CallbackServerContext* context,
       const v1::GetSourceRequest* request) override;

@@ -63,10 +63,11 @@ def test_hole_selection(client):
     assert [(h.boundary_vertices, h.status) for h in only.report.holes
             if h.id == hole] == [(16, "filled")]
     assert only.report.skipped == 1
-    none = client.fill_holes(v, f, holes=[99])
-    assert none.report.filled == 0
-    assert {h.reason for h in none.report.holes} == {
-        "not among the requested holes"}
+    # A hole id that names no hole is an error, not "nothing to fill".
+    with pytest.raises(dot_client.DotError) as e:
+        client.fill_holes(v, f, holes=[99])
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "there is no hole 99: the mesh has 2 holes" in e.value.message
 
 
 def test_weights_and_options(client):
@@ -131,10 +132,13 @@ def test_server_errors(client, limited_server):
                               no_repair=no_repair)
         assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
         assert "edge 0-1 is shared by 3 faces" in e.value.message
-    # Faces that are all degenerate: nothing left to fill, not an error.
+    # Faces that are all degenerate: nothing is left, which is an error (it
+    # was answered OK, closed, with an empty mesh).
     flat = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], dtype=float)
-    r = client.fill_holes(flat, [[0, 1, 2]])
-    assert r.report.repair.degenerate_faces == 1 and r.report.loops == 0
+    with pytest.raises(dot_client.DotError) as e:
+        client.fill_holes(flat, [[0, 1, 2]])
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "nothing is left of the mesh after repair" in e.value.message
 
 
 @pytest.mark.parametrize("vertices, faces, kwargs, words", [
