@@ -220,5 +220,75 @@ TEST(FillHolesServiceTest, TetgenAbortOnAHoleRimFailsTheCallNotTheServer) {
   EXPECT_TRUE(after.status.ok()) << after.status.error_message();
 }
 
+TEST(FillHolesServiceTest, FillMemoryIsChargedAsTheMeshArrives) {
+  // Before: uploads were charged to no budget (70 streams that never
+  // half-closed took a server from 72 MB to 5.2 GB).
+  auto config = LoopbackConfig();
+  const MeshData big = HoleyTorus(100, 50, 2);
+  const MeshData small = HoleyTorus(20, 10, 1);
+  config.service.fill_memory_bytes =
+      server::FillMemoryBytes(static_cast<int64_t>(small.vertices.size()),
+                              static_cast<int64_t>(small.triangles.size())) *
+      2;
+  auto s = StartServer(config);
+  const auto refused = client::FillRemote(*s.stub, "big", {}, ToSoup(big), 60);
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(refused.status.error_message().find("memory for FillHoles calls"),
+            std::string::npos)
+      << refused.status.error_message();
+  // The charge is given back: a mesh that fits is filled, twice.
+  for (int i = 0; i < 2; ++i) {
+    const auto ok = client::FillRemote(*s.stub, "small", {}, ToSoup(small), 60);
+    EXPECT_TRUE(ok.status.ok()) << ok.status.error_message();
+  }
+  // GetServerInfo advertises the FillHoles limits.
+  grpc::ClientContext c;
+  v1::ServerInfo info;
+  ASSERT_TRUE(s.stub->GetServerInfo(&c, {}, &info).ok());
+  EXPECT_EQ(info.limits().fill_memory_bytes(),
+            static_cast<uint64_t>(config.service.fill_memory_bytes));
+  EXPECT_EQ(info.limits().fill_max_faces(),
+            static_cast<uint64_t>(config.service.fill_max_faces));
+  EXPECT_EQ(info.limits().fill_max_vertices(),
+            static_cast<uint64_t>(config.service.fill_max_vertices));
+}
+
+TEST(FillHolesServiceTest, StoppedCallsAreAnsweredAndCountedByTheirReason) {
+  // Before: every stop was logged CANCELLED "the client went away".
+  auto s = StartServer(LoopbackConfig());
+  // Seconds of upload and fill: both stops below come well before the end.
+  const PolygonSoup soup = ToSoup(HoleyTorus(1000, 500, 6));
+  // The client's deadline passes.
+  const auto late = client::FillRemote(*s.stub, "late", {}, soup, 0.5);
+  EXPECT_EQ(late.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  // The request's own budget passes.
+  v1::FillOptions budget;
+  budget.set_time_budget_ms(100);
+  const auto limited = client::FillRemote(*s.stub, "budget", budget, soup, 60);
+  EXPECT_EQ(limited.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  EXPECT_NE(limited.status.error_message().find("time limit"),
+            std::string::npos)
+      << limited.status.error_message();
+  // Metrics are counted when the server answers, just after the client
+  // sees the status: wait for them (a liveness bound, not a timing test).
+  const std::string want_deadline =
+      "dot_requests_stopped_total{reason=\"client_deadline\",rpc="
+      "\"FillHoles\"} 1";
+  const std::string want_budget =
+      "dot_requests_stopped_total{reason=\"server_budget\",rpc="
+      "\"FillHoles\"} 1";
+  std::string scraped;
+  for (int i = 0; i < 600; ++i) {
+    scraped = s.server->metrics().Scrape();
+    if (scraped.find(want_deadline) != std::string::npos &&
+        scraped.find(want_budget) != std::string::npos) {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_NE(scraped.find(want_deadline), std::string::npos) << scraped;
+  EXPECT_NE(scraped.find(want_budget), std::string::npos) << scraped;
+}
+
 }  // namespace
 }  // namespace dot

@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: AGPL-3.0-or-later
+"""FillHoles uploads that break off, stall or outlive a drain.
+
+Raw bytes to a real dot-server on loopback, each case a defect once seen:
+- a message that does not parse in the middle of the upload ended the
+  upload as if the client had half-closed, and the partial mesh was filled
+  and answered OK; it must be INVALID_ARGUMENT naming the message;
+- a client that sends its mesh and never half-closes held a slot for as long
+  as it liked (the deadline was checked only when a message arrived); the
+  upload must end by a timer with DEADLINE_EXCEEDED;
+- on SIGTERM the drain waited its whole period for such an idle uploader;
+  the upload must end at once with UNAVAILABLE and the server exit.
+
+Usage: fill_raw_messages_test.py PATH/TO/dot-server
+"""
+import signal
+import socket
+import struct
+import subprocess
+import sys
+import threading
+import time
+
+import grpc
+
+
+def varint(n):
+    out = b""
+    while True:
+        b = n & 0x7F
+        n >>= 7
+        out += bytes([b | (0x80 if n else 0)])
+        if not n:
+            return out
+
+
+def field(number, wire_type, payload):
+    key = varint(number << 3 | wire_type)
+    if wire_type == 2:
+        return key + varint(len(payload)) + payload
+    return key + payload
+
+
+def first_message(request_id, time_budget_ms=0):
+    """id, options and one triangle: a mesh with one hole."""
+    options = field(10, 0, varint(time_budget_ms)) if time_budget_ms else b""
+    coordinates = b"".join(struct.pack("<d", c)
+                           for c in (0, 0, 0, 1, 0, 0, 0, 1, 0))
+    faces = b"".join(varint(i) for i in (0, 1, 2))
+    return (field(1, 2, request_id.encode()) + field(2, 2, options) +
+            field(3, 2, coordinates) + field(4, 2, faces))
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start(server_path, *flags):
+    port = free_port()
+    server = subprocess.Popen([server_path, "--listen", f"127.0.0.1:{port}",
+                               "--metrics-port", "0", "--log-level", "warn",
+                               *flags])
+    channel = grpc.insecure_channel(f"127.0.0.1:{port}")
+    grpc.channel_ready_future(channel).result(timeout=20)
+    call = channel.stream_stream("/dot.v1.Triangulator/FillHoles",
+                                 request_serializer=lambda b: b,
+                                 response_deserializer=lambda b: b)
+    return server, call
+
+
+def stalled(messages, release):
+    """The messages, then silence until `release` is set: no half-close."""
+    yield from messages
+    release.wait()
+
+
+def expect_error(call, requests, code, words):
+    try:
+        responses = list(call(requests, timeout=60))
+    except grpc.RpcError as e:
+        assert e.code() == code, (e.code(), e.details())
+        assert words in e.details(), e.details()
+        return e
+    raise AssertionError(f"expected {code}, got {len(responses)} responses")
+
+
+def main():
+    server, call = start(sys.argv[1])
+    release = threading.Event()
+    try:
+        # A message that does not parse, after a good first one.
+        expect_error(call, iter([first_message("bad"), b"\xff\xff\xff"]),
+                     grpc.StatusCode.INVALID_ARGUMENT,
+                     "message 1 of the upload does not parse")
+        # An upload that never half-closes ends by the request's budget.
+        t0 = time.monotonic()
+        expect_error(call, stalled([first_message("idle", 1500)], release),
+                     grpc.StatusCode.DEADLINE_EXCEEDED,
+                     "did not arrive within the time limit")
+        print(f"idle upload with a 1.5 s budget ended after "
+              f"{time.monotonic() - t0:.2f} s (client deadline 60 s)")
+        # The server is still up and right.
+        done = list(call(iter([first_message("after")]), timeout=60))
+        assert done, "no answer after the bad uploads"
+    finally:
+        release.set()
+        server.terminate()
+        server.wait(timeout=30)
+
+    # A drain ends an idle upload at once.
+    server, call = start(sys.argv[1], "--drain-seconds", "60")
+    release = threading.Event()
+    outcome = {}
+
+    def upload():
+        try:
+            list(call(stalled([first_message("draining")], release),
+                      timeout=120))
+            outcome["code"] = grpc.StatusCode.OK
+        except grpc.RpcError as e:
+            outcome["code"] = e.code()
+
+    try:
+        t = threading.Thread(target=upload)
+        t.start()
+        time.sleep(1)  # the first message is in
+        t0 = time.monotonic()
+        server.send_signal(signal.SIGTERM)
+        server.wait(timeout=50)  # the drain period is 60 s
+        took = time.monotonic() - t0
+        t.join(timeout=30)
+        assert outcome.get("code") == grpc.StatusCode.UNAVAILABLE, outcome
+        print(f"SIGTERM with an idle upload: exited after {took:.2f} s "
+              f"(drain period 60 s)")
+    finally:
+        release.set()
+        if server.poll() is None:
+            server.kill()
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
