@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "exit_codes.h"
 #include "fill_call.h"
+#include "remote_call.h"
 #include "request_flags.h"
 #include "wire/wire.h"
 
@@ -21,7 +22,7 @@ namespace dot::client {
 namespace {
 
 struct FillFlags {
-  std::string input, output, stdin_format;
+  std::string input, output, stdin_format, output_format;
   std::string stage = "fair";
   uint32_t max_hole_edges = 0;
   double max_hole_diameter = 0;
@@ -62,12 +63,16 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                   "(with --input-format)")
       ->required();
   cmd->add_option("-o,--output", f->output,
-                  "filled mesh (.off, .obj, .ply; - for stdout as "
+                  "filled mesh (.off, .obj, .ply, .stl; - for stdout as "
                   "--output-format); default: NAME.filled.ply beside the "
                   "input");
   cmd->add_option("--input-format", f->stdin_format,
-                  "format of a mesh read from stdin")
+                  "format of a mesh read from stdin (- or /dev/stdin)")
       ->check(CLI::IsMember({"off", "obj", "ply", "stl"}));
+  cmd->add_option("--output-format", f->output_format,
+                  "format of the filled mesh on stdout, or of an -o file "
+                  "without an extension (default: off on stdout)")
+      ->check(CLI::IsMember({"off", "obj", "ply"}));
   cmd->add_option("--stage", f->stage,
                   "triangulate (the DOT patch), refine (+ Liepa refinement) "
                   "or fair (+ fairing: the finished surface)")
@@ -116,16 +121,50 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_flag("--local", f->local, "fill in this process, no server");
 }
 
-std::string Format(const std::string& path, const std::string& fallback) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (ext.size() > 1) return ext.substr(1);
-  return fallback;
+// Where the filled mesh goes, checked before any work: the path and its
+// format, or the reason it cannot be written there.
+struct FillTarget {
+  std::string path;  // "-": stdout
+  std::string format, error;
+};
+
+FillTarget ResolveFillOutput(const FillFlags& f) {
+  FillTarget t;
+  t.path = f.output;
+  if (t.path.empty()) {
+    if (IsStreamInput(f.input)) {
+      t.path = "-";
+    } else {
+      std::filesystem::path p(f.input);
+      t.path = (p.parent_path() / (p.stem().string() + ".filled.ply")).string();
+    }
+  }
+  if (t.path == "-") {
+    t.format = f.output_format.empty() ? "off" : f.output_format;
+    return t;
+  }
+  std::string ext = std::filesystem::path(t.path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(c));
+  ext = ext.size() > 1 ? ext.substr(1) : "";
+  if (ext == "off" || ext == "obj" || ext == "ply") {
+    if (!f.output_format.empty() && f.output_format != ext) {
+      t.error = "-o '" + t.path + "' names a ." + ext +
+                " file but --output-format says " + f.output_format;
+    }
+    t.format = ext;
+  } else if (!f.output_format.empty()) {
+    t.format = f.output_format;
+  } else {
+    t.error = "cannot tell the mesh format of '" + t.path +
+              "'; name it .off, .obj or .ply, or give --output-format";
+  }
+  return t;
 }
 
 // Reads the mesh; stdin goes through a temporary file, since CGAL's readers
 // detect binary PLY/STL from a file.
 Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
-  if (f.input != "-") return ReadPolygonSoupFile(f.input, soup);
+  if (!IsStreamInput(f.input)) return ReadPolygonSoupFile(f.input, soup);
   if (f.stdin_format.empty()) {
     return InvalidArgument("reading a mesh from stdin needs --input-format");
   }
@@ -137,7 +176,12 @@ Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
   std::rename(name, path.c_str());
   {
     std::ofstream tmp(path, std::ios::binary);
-    tmp << std::cin.rdbuf();
+    if (f.input == "-") {
+      tmp << std::cin.rdbuf();
+    } else {
+      std::ifstream in(f.input, std::ios::binary);
+      tmp << in.rdbuf();
+    }
   }
   Status s = ReadPolygonSoupFile(path, soup);
   std::remove(path.c_str());
@@ -172,30 +216,41 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
   AddFlags(cmd, flags.get());
   cmd->callback([flags, ctx] {
     const FillFlags& f = *flags;
-    std::string out = f.output;
-    if (out.empty()) {
-      if (f.input == "-")
-        out = "-";
-      else {
-        std::filesystem::path p(f.input);
-        out = (p.parent_path() / (p.stem().string() + ".filled.ply")).string();
+    FillOutcome o;
+    std::string written;
+    // Every outcome, as text on stderr or as one JSON object.
+    auto report = [&](const char* outcome, int exit_code,
+                      const std::string& error, bool called) {
+      ctx->exit_code = std::max(ctx->exit_code, exit_code);
+      if (f.json) {
+        std::ostream& text = written == "-" ? std::cerr : std::cout;
+        text << FillOutcomeJson(f.input, o, written, outcome, exit_code, error,
+                                called)
+             << std::endl;
+      } else if (!error.empty()) {
+        std::cerr << "dotctl: " << f.input << ": " << error << "\n";
       }
+    };
+    if (f.input == "/dev/stdin" && f.stdin_format.empty()) {
+      report(kOutcomeInputError, kExitUsage,
+             "reading a mesh from stdin needs --input-format", false);
+      return;
     }
-    const std::string format = out == "-" ? "off" : Format(out, "");
-    if (format != "off" && format != "obj" && format != "ply") {
-      std::cerr << "dotctl: cannot tell the mesh format of '" << out
-                << "'; name it .off, .obj or .ply\n";
-      ctx->exit_code = kExitUsage;
+    // Checked before the work: where the mesh goes, and that it can.
+    const FillTarget target = ResolveFillOutput(f);
+    AtomicOutput sink;
+    std::string output_error = target.error;
+    if (output_error.empty()) output_error = sink.Open(target.path);
+    if (!output_error.empty()) {
+      report(kOutcomeOutputError, kExitUsage, output_error, false);
       return;
     }
     PolygonSoup soup;
     const Status read = ReadInput(f, &soup);
     if (!read.ok()) {
-      std::cerr << "dotctl: " << read.message << "\n";
-      ctx->exit_code = kExitUsage;
+      report(kOutcomeInputError, kExitUsage, read.message, false);
       return;
     }
-    FillOutcome o;
     if (f.local) {
       o = FillLocal(f.input, f.ToWire(), soup);
     } else {
@@ -212,45 +267,45 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
                      });
       if (bar) std::cerr << "\r              \r";
     }
-    std::string written;
-    if (o.status.ok()) {
-      Status w;
-      if (out == "-") {
-        w = WriteMesh(std::cout, format, o.mesh, f.ascii);
-      } else {
-        w = WriteMeshFile(out, o.mesh, f.ascii);
-        if (w.ok()) written = out;
-      }
-      if (!w.ok()) {
-        std::cerr << "dotctl: " << w.message << "\n";
-        ctx->exit_code = kExitFailed;
-      }
-    }
-    // With the mesh on stdout, the report goes to stderr.
-    std::ostream& text = out == "-" ? std::cerr : std::cout;
-    if (f.json) {
-      text << FillOutcomeJson(f.input, o, written) << std::endl;
-    } else if (!o.status.ok()) {
-      std::cerr << "dotctl: " << f.input << ": "
-                << wire::GrpcCodeName(o.status.error_code()) << ": "
-                << o.status.error_message() << "\n";
-    } else if (!ctx->quiet) {  // -q: errors only
-      if (out != "-") PrintTable(o.report);
-      const v1::FillReport& r = o.report;
-      text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
-           << " holes filled"
-           << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
-                           : "")
-           << ", " << (r.closed() ? "closed" : "still open") << "; +"
-           << r.added_vertices() << " vertices, +" << r.added_faces()
-           << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms"
-           << (written.empty() ? "" : " -> " + written) << std::endl;
-    }
     if (!o.status.ok()) {
-      ctx->exit_code = std::max(ctx->exit_code, ExitCodeFor(o.status));
-    } else if (o.report.unfilled() > 0 && ctx->exit_code == kExitOk) {
-      ctx->exit_code = kExitNoTriangulation;
+      // A mesh or options the service refuses are unusable input (2).
+      const int code =
+          o.status.error_code() == grpc::StatusCode::INVALID_ARGUMENT
+              ? kExitUsage
+              : ExitCodeFor(o.status);
+      report(kOutcomeCallFailed, code,
+             std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
+                 o.status.error_message(),
+             true);
+      return;
     }
+    Status w = WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
+    std::string write_error = w.ok() ? sink.Commit() : w.message;
+    if (!write_error.empty()) {
+      report(kOutcomeWriteFailed, kExitFailed, write_error, true);
+      return;
+    }
+    written = target.path;
+    const v1::FillReport& r = o.report;
+    const int code = r.unfilled() > 0 ? kExitNoTriangulation : kExitOk;
+    if (f.json) {
+      report(r.unfilled() > 0 ? kOutcomeNoTriangulation : kOutcomeOk, code, "",
+             true);
+      return;
+    }
+    ctx->exit_code = std::max(ctx->exit_code, code);
+    if (ctx->quiet) return;  // -q: errors only
+    // With the mesh on stdout, the report goes to stderr.
+    std::ostream& text = written == "-" ? std::cerr : std::cout;
+    if (written != "-") PrintTable(r);
+    text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
+         << " holes filled"
+         << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
+                         : "")
+         << ", " << (r.closed() ? "closed" : "still open") << "; +"
+         << r.added_vertices() << " vertices, +" << r.added_faces()
+         << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> "
+         << written << std::endl;
   });
 }
 

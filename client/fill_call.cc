@@ -114,9 +114,11 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
 }
 
 std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
-                            const std::string& output_path) {
+                            const std::string& output_path,
+                            const std::string& outcome, int exit_code,
+                            const std::string& error, bool called) {
   std::string report = "null";
-  if (o.status.ok()) {
+  if (called && o.status.ok()) {
     google::protobuf::util::JsonPrintOptions options;
     options.always_print_primitive_fields = true;
     options.preserve_proto_field_names = true;
@@ -125,9 +127,13 @@ std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
                                                       options);
   }
   std::ostringstream s;
-  s << "{\"version\":1,\"input\":" << JsonQuote(input) << ",\"rpc_status\":"
-    << JsonQuote(std::string(wire::GrpcCodeName(o.status.error_code())))
-    << ",\"error\":" << JsonQuote(o.status.error_message())
+  s << "{\"version\":1,\"input\":" << JsonQuote(input)
+    << ",\"outcome\":" << JsonQuote(outcome) << ",\"exit_code\":" << exit_code
+    << ",\"rpc_status\":"
+    << (called
+            ? JsonQuote(std::string(wire::GrpcCodeName(o.status.error_code())))
+            : std::string("null"))
+    << ",\"error\":" << JsonQuote(error)
     << ",\"output\":" << JsonQuote(output_path)
     << ",\"latency_ms\":" << o.latency_ms << ",\"report\":" << report << "}";
   return s.str();

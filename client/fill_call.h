@@ -34,9 +34,13 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        const FillProgressFn& on_progress = nullptr);
 
 // The JSON object dotctl prints for a fill (--json): versioned, complete
-// for every outcome.
+// for every outcome (the `outcome` names of remote_call.h). `called`: a
+// call (or local run) was made, so rpc_status is its code, not null;
+// `error` is "" for ok.
 std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
-                            const std::string& output_path);
+                            const std::string& output_path,
+                            const std::string& outcome, int exit_code,
+                            const std::string& error, bool called);
 
 }  // namespace dot::client
 

@@ -95,14 +95,46 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
     bad << "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
            "3 0 1 2\n3 1 0 3\n3 0 1 4\n";
   }
+  // A mesh the service refuses is unusable input: 2, as documented (was 1).
   r = Dotctl(flag_ + "fill-holes " + Path("fin.off"));
-  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("INVALID_ARGUMENT"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("shared by 3 faces"), std::string::npos) << r.out;
   r = Dotctl("fill-holes --local " + Path("holey.off") + " -o " +
              Path("out.xyz"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("cannot tell the mesh format"), std::string::npos);
+
+  // Checked before the work (was: the whole fill, then exit 1 and a JSON
+  // that said OK): a directory that does not exist.
+  r = Dotctl("fill-holes --local --json " + Path("holey.off") +
+             " -o /missing/dir/x.off");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"output_error\""), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"rpc_status\":null"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("No such file or directory"), std::string::npos);
+  // An unreadable mesh with --json: the JSON says why (it printed nothing).
+  r = Dotctl("fill-holes --local --json " + Path("missing.off"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"input_error\""), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"report\":null"), std::string::npos) << r.out;
+  // A hole that does not exist (was: exit 0, the mesh unchanged).
+  for (const char* holes : {"99", "-1"}) {
+    r = Dotctl("fill-holes --local " + Path("holey.off") + " --holes=" +
+               holes + " -o " + Path("none.off"));
+    EXPECT_EQ(r.code, 2) << holes << ": " << r.out;
+    EXPECT_NE(r.out.find(std::string("there is no hole ") + holes),
+              std::string::npos)
+        << r.out;
+  }
+  // --output-format on stdout (was: always OFF), and /dev/stdin as input
+  // (was: refused, while triangulate took it).
+  r = Dotctl("fill-holes --local /dev/stdin --input-format off -o - "
+             "--output-format obj < " +
+             Path("holey.off") + " 2>/dev/null | head -1");
+  EXPECT_EQ(r.out.rfind("v ", 0), 0u) << r.out;
 
   // A selection that leaves nothing: every selected hole filled, exit 0,
   // but the mesh stays open.
