@@ -22,7 +22,9 @@ inline int64_t FillMemoryBytes(int64_t vertices, int64_t faces) {
 
 struct ServiceOptions {
   // Largest polygon accepted.
-  int max_vertices = 1000000;
+  // The default is what one 16 MiB request message carries (24 bytes a
+  // vertex): larger values are lowered to that, with a warning.
+  int max_vertices = 698880;
   // Largest mesh FillHoles accepts.
   int64_t fill_max_vertices = 5000000;
   int64_t fill_max_faces = 10000000;
