@@ -89,6 +89,34 @@ if [ -z "$errors" ] || [ "$errors" -gt 10 ]; then
 fi
 for i in 1 3; do echo "replica $i served $(served "$i") requests in total"; done
 
+say "FillHoles of a mesh over 64 MB through the balancer"
+# nginx once reset such streams (client_max_body_size 64m).
+big=$(mktemp -d)
+/usr/bin/python3 - "$big/grid.off" <<'PY'
+import sys
+n = 1300  # (n+1)^2 vertices, 2 n^2 faces minus a hole: ~70 MB on the wire
+with open(sys.argv[1], "w") as f:
+    faces = []
+    for i in range(n):
+        for j in range(n):
+            if n // 2 - 2 <= i < n // 2 + 2 and n // 2 - 2 <= j < n // 2 + 2:
+                continue
+            a = i * (n + 1) + j
+            faces.append(f"3 {a} {a + 1} {a + n + 2}\n3 {a} {a + n + 2} {a + n + 1}\n")
+    f.write(f"OFF\n{(n + 1) ** 2} {2 * len(faces)} 0\n")
+    f.writelines(f"{i} {j} 0\n" for i in range(n + 1) for j in range(n + 1))
+    f.writelines(faces)
+PY
+chmod -R a+rwX "$big"
+if "$engine" run --rm --no-healthcheck --network=host -v "$big:/work:Z" \
+    --entrypoint dotctl "$image" --server 127.0.0.1:8080 --timeout 600 \
+    fill-holes /work/grid.off --stage triangulate --skip-longest -o /work/out.ply; then
+  echo "filled through the balancer: $(du -h "$big/out.ply" | cut -f1) written"
+else
+  echo "FAIL: a large FillHoles did not pass the balancer"; fail=1
+fi
+rm -rf "$big"
+
 say "tearing down"
 cleanup
 trap - EXIT

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// libFuzzer target: a FillHoles request stream as dot-server reads it
+// (server/rpc/fill_holes_reactor.cc): raw messages in any order and size,
+// each parsed alone (a message that does not parse is refused by its
+// position), fed to wire::FillRequestReader under small limits, the options
+// translated, the mesh repaired (or triangulated as sent with no_repair)
+// and filled by dot::FillHoles under a short deadline.
+//
+// Input framing: a sequence of [2-byte little-endian length][that many
+// bytes] messages (a short last one takes what is left).
+//
+// Oracle (the service's honesty): never crash; every refusal is a non-OK
+// status with a message and never gRPC OK; an OK fill has only finite
+// vertices, keeps the repaired input's vertices first and unchanged, has
+// faces over existing, distinct vertices, counts that add up, and a mesh
+// reported closed has every edge on exactly two faces.
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dot/dot.h"
+#include "dot/v1/triangulation.pb.h"
+#include "google/protobuf/stubs/logging.h"
+#include "wire/fill_wire.h"
+#include "wire/wire.h"
+
+namespace v1 = dot::v1;
+
+namespace {
+
+// Small meshes only: the fuzzer explores the protocol and the honesty of
+// the answer, not the cost of big fills.
+constexpr size_t kMaxVertices = 300;
+constexpr size_t kMaxFaces = 600;
+
+[[noreturn]] void Fail(const std::string& what) {
+  std::fprintf(stderr, "ORACLE FAILED: %s\n", what.c_str());
+  std::abort();
+}
+
+void CheckRefusal(const dot::Status& s) {
+  if (s.ok()) Fail("refusal with an OK status");
+  if (s.message.empty()) Fail("refusal without a message");
+  if (dot::wire::ToGrpcStatus(s).ok()) {
+    Fail("failure " + std::string(dot::StatusCodeName(s.code)) +
+         " sent as gRPC OK");
+  }
+}
+
+void CheckFill(const dot::MeshData& input, const dot::FillResult& r) {
+  const dot::MeshData& m = r.mesh;
+  if (m.vertices.size() < input.vertices.size()) Fail("input vertices lost");
+  for (size_t v = 0; v < m.vertices.size(); ++v) {
+    if (!dot::IsFinite(m.vertices[v])) {
+      Fail("vertex " + std::to_string(v) + " is not finite");
+    }
+    if (v < input.vertices.size()) {
+      const dot::Vec3 &a = m.vertices[v], &b = input.vertices[v];
+      if (a.x != b.x || a.y != b.y || a.z != b.z) {
+        Fail("input vertex " + std::to_string(v) + " moved");
+      }
+    }
+  }
+  const auto n = static_cast<int32_t>(m.vertices.size());
+  std::map<std::pair<int32_t, int32_t>, int> edges;
+  for (const dot::Triangle& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] < 0 || t[k] >= n) Fail("face over a missing vertex");
+      const int32_t a = t[k], b = t[(k + 1) % 3];
+      if (a == b) Fail("face repeats a vertex");
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  const dot::FillReport& rep = r.report;
+  if (rep.filled + rep.skipped + rep.unfilled != rep.loops ||
+      static_cast<int32_t>(rep.holes.size()) != rep.loops) {
+    Fail("hole counts do not add up");
+  }
+  if (rep.closed) {
+    for (const auto& [edge, uses] : edges) {
+      if (uses != 2) Fail("reported closed with an open or shared edge");
+    }
+  }
+  if (m.triangles.empty()) Fail("OK with an empty mesh");
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  google::protobuf::SetLogHandler(nullptr);  // parse errors are expected
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  dot::wire::FillRequestReader reader(kMaxVertices, kMaxFaces);
+  size_t at = 0, messages = 0;
+  while (at + 2 <= size) {
+    const size_t length = std::min<size_t>(
+        data[at] | static_cast<size_t>(data[at + 1]) << 8, size - at - 2);
+    v1::FillHolesRequest m;
+    if (!m.ParseFromArray(data + at + 2, static_cast<int>(length))) {
+      return 0;  // refused by position, as the reactor does: nothing to fill
+    }
+    at += 2 + length;
+    ++messages;
+    const dot::Status s = reader.Add(m);
+    if (!s.ok()) {
+      CheckRefusal(s);
+      return 0;
+    }
+  }
+  if (messages == 0) return 0;
+  dot::PolygonSoup soup;
+  dot::Status s = reader.Finish(&soup);
+  if (!s.ok()) {
+    CheckRefusal(s);
+    return 0;
+  }
+  dot::FillOptions options;
+  s = dot::wire::FillOptionsFromWire(reader.options(), &options);
+  if (!s.ok()) {
+    CheckRefusal(s);
+    return 0;
+  }
+  options.threads = 1;
+  dot::Control control;
+  control.deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+  dot::MeshData mesh;
+  dot::RepairReport repair;
+  s = reader.options().no_repair()
+          ? dot::TriangulateSoup(soup, control, &mesh)
+          : dot::RepairMesh(soup, control, &mesh, &repair);
+  if (!s.ok()) {
+    CheckRefusal(s);
+    return 0;
+  }
+  const dot::FillResult r = dot::FillHoles(mesh, options, control);
+  if (!r.status.ok()) {
+    CheckRefusal(r.status);
+    return 0;
+  }
+  CheckFill(mesh, r);
+  return 0;
+}
