@@ -35,13 +35,19 @@ USER 10001
 # glibc.malloc.hugetlb=1: large tables get transparent huge pages; page
 # faults otherwise cost up to half of a large solve (README, Performance).
 ENV DOT_LISTEN=0.0.0.0:50051 \
+    DOT_HEALTH_LISTEN=127.0.0.1:50052 \
     DOT_METRICS_PORT=9090 \
     DOT_LOG_LEVEL=info \
     DOT_DRAIN_SECONDS=20 \
     DOT_SERVER=127.0.0.1:50051 \
     GLIBC_TUNABLES=glibc.malloc.hugetlb=1
 EXPOSE 50051 9090
+# Health over a plaintext, health-only loopback port (DOT_HEALTH_LISTEN):
+# with TLS on the main port, `dotctl health` read the server's DOT_TLS_CERT
+# and DOT_TLS_KEY as a client certificate and failed (unhealthy container).
+# The client's TLS variables are cleared for the check.
 HEALTHCHECK --interval=10s --timeout=4s --start-period=5s --retries=3 \
-  CMD ["dotctl", "health"]
+  CMD ["env", "-u", "DOT_TLS_CA", "-u", "DOT_TLS_CERT", "-u", "DOT_TLS_KEY", \
+       "dotctl", "--server", "127.0.0.1:50052", "health"]
 STOPSIGNAL SIGTERM
 ENTRYPOINT ["dot-server"]

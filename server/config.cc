@@ -141,8 +141,12 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
          "run on the RPC thread when a compute slot is free, saving a thread "
          "handoff (0: never)");
   AddInt(app, "--fill-max-faces", &s.fill_max_faces, "DOT_FILL_MAX_FACES",
-         "largest mesh FillHoles accepts, in faces (held in memory: about 100 "
-         "bytes each)");
+         "largest mesh FillHoles accepts, in faces (a call holds up to 100 "
+         "bytes a vertex and 300 a face: 3.5 GB at the defaults)");
+  AddSize(app, "--fill-memory-mb", 20, &s.fill_memory_bytes,
+          "DOT_FILL_MEMORY_MB",
+          "memory all FillHoles calls may hold at once, uploads included; a "
+          "call that would exceed it is answered RESOURCE_EXHAUSTED");
   AddInt(app, "--fill-max-vertices", &s.fill_max_vertices,
          "DOT_FILL_MAX_VERTICES",
          "largest mesh FillHoles accepts, in vertices");
@@ -164,6 +168,9 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   Add(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
       "PEM CA bundle; when set, clients must present a certificate it "
       "signed (mutual TLS)");
+  Add(app, "--health-listen", &c->health_listen, "DOT_HEALTH_LISTEN",
+      "plaintext address serving only gRPC health (e.g. 127.0.0.1:50052), "
+      "for health checks of a TLS server; default: none");
   AddInt(app, "--drain-seconds", &c->drain_seconds, "DOT_DRAIN_SECONDS",
          "on SIGTERM, time in-flight requests get to finish before they are "
          "cancelled");

@@ -28,6 +28,10 @@ struct TlsOptions {
 
 struct ServerConfig {
   std::string listen = "0.0.0.0:50051";
+  // A second, plaintext endpoint serving only gRPC health (e.g.
+  // 127.0.0.1:50052), for a container health check when the main port
+  // speaks TLS; "": none.
+  std::string health_listen;
   ServiceOptions service;
   ComputePoolOptions pool;
   DelaunayHelperOptions helpers;

@@ -97,11 +97,23 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
     *error = "cannot listen on " + c.listen;
     return nullptr;
   }
+  if (!c.health_listen.empty()) {
+    // Only the default health service is registered here: the API stays
+    // behind the main port's credentials.
+    grpc::ServerBuilder health;
+    health.AddListeningPort(c.health_listen, grpc::InsecureServerCredentials(),
+                            &s->health_port_);
+    health.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
+    s->health_server_ = health.BuildAndStart();
+    if (!s->health_server_ || s->health_port_ == 0) {
+      *error = "cannot listen on " + c.health_listen + " (--health-listen)";
+      s->server_->Shutdown();
+      return nullptr;
+    }
+  }
   // Health answers for the whole server ("") and by service name.
   for (const std::string& note : c.notes) spdlog::warn("{}", note);
-  s->server_->GetHealthCheckService()->SetServingStatus(true);
-  s->server_->GetHealthCheckService()->SetServingStatus(
-      v1::Triangulator::service_full_name(), true);
+  s->SetServing(true);
   spdlog::info(
       "dot-server listening on {} (port {}), {} compute threads, queue {}, "
       "{} Delaunay helpers, metrics {}",
@@ -111,9 +123,18 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
   return s;
 }
 
+void DotServer::SetServing(bool serving) {
+  for (grpc::Server* server : {server_.get(), health_server_.get()}) {
+    if (server == nullptr) continue;
+    server->GetHealthCheckService()->SetServingStatus(serving);
+    server->GetHealthCheckService()->SetServingStatus(
+        v1::Triangulator::service_full_name(), serving);
+  }
+}
+
 void DotServer::Drain(std::chrono::milliseconds grace) {
   if (drained_.exchange(true)) return;
-  server_->GetHealthCheckService()->SetServingStatus(false);
+  SetServing(false);
   jobs_->StartDraining();
   const auto until = std::chrono::steady_clock::now() + grace;
   spdlog::info("draining: {} requests in flight, up to {} ms",
@@ -126,6 +147,7 @@ void DotServer::Drain(std::chrono::milliseconds grace) {
     jobs_->CancelAllForDrain();
   }
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  if (health_server_) health_server_->Shutdown();
   spdlog::info("stopped");
 }
 

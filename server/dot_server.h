@@ -30,6 +30,8 @@ class DotServer {
   ~DotServer();
 
   int port() const { return port_; }
+  // The plaintext health-only port (ServerConfig::health_listen); 0: none.
+  int health_port() const { return health_port_; }
   // Graceful stop: health NOT_SERVING, new requests refused, in-flight work
   // given `grace` to finish, then cancelled; the gRPC server shut down.
   void Drain(std::chrono::milliseconds grace);
@@ -40,6 +42,8 @@ class DotServer {
 
  private:
   DotServer() = default;
+  // Health of both endpoints, for the server ("") and the service name.
+  void SetServing(bool serving);
   ServerConfig config_;
   std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<DelaunayHelperPool> helpers_;
@@ -48,7 +52,8 @@ class DotServer {
   std::unique_ptr<JobRunner> jobs_;
   std::unique_ptr<TriangulatorService> service_;
   std::unique_ptr<grpc::Server> server_;
-  int port_ = 0;
+  std::unique_ptr<grpc::Server> health_server_;  // health only, plaintext
+  int port_ = 0, health_port_ = 0;
   std::atomic<bool> drained_{false};
 };
 

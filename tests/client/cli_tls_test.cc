@@ -86,6 +86,40 @@ TEST(TlsTest, TlsAndMutualTls) {
   fs::remove_all(d);
 }
 
+TEST(TlsTest, ContainerHealthCheckPassesWithTlsOn) {
+  // Before: the image's HEALTHCHECK (`dotctl health`) read the server's
+  // DOT_TLS_CERT/DOT_TLS_KEY as a client certificate, spoke plaintext to
+  // the TLS port and exited 3: every TLS container was unhealthy.
+  const fs::path d = MakeCertificates();
+  auto config = testing::LoopbackConfig();
+  config.tls.cert = (d / "server.pem").string();
+  config.tls.key = (d / "server.key").string();
+  config.tls.client_ca = (d / "ca.pem").string();  // mutual TLS, even
+  config.health_listen = "127.0.0.1:0";
+  auto s = testing::StartServer(config);
+  ASSERT_GT(s.server->health_port(), 0);
+  const std::string health =
+      "127.0.0.1:" + std::to_string(s.server->health_port());
+  // The Dockerfile's HEALTHCHECK, with the server's environment.
+  const std::string env = "DOT_TLS_CERT='" + config.tls.cert +
+                          "' DOT_TLS_KEY='" + config.tls.key + "' ";
+  CliRun r = testing::RunShell(env +
+                               "env -u DOT_TLS_CA -u DOT_TLS_CERT -u "
+                               "DOT_TLS_KEY " DOT_DOTCTL_PATH " --server " +
+                               health + " health");
+  EXPECT_EQ(r.code, 0) << r.out;
+  // Only health is served there: the API stays behind TLS.
+  client::ConnectionFlags plain;
+  plain.server = health;
+  EXPECT_EQ(CallOver(plain).error_code(), grpc::StatusCode::UNIMPLEMENTED);
+  // A drain turns it NOT_SERVING like the main port.
+  s.server->Drain(std::chrono::milliseconds(0));
+  r = testing::RunShell(std::string(DOT_DOTCTL_PATH) + " --server " + health +
+                        " --timeout 2 health");
+  EXPECT_NE(r.code, 0) << r.out;
+  fs::remove_all(d);
+}
+
 std::string Slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), {});
