@@ -168,6 +168,9 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   Add(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
       "PEM CA bundle; when set, clients must present a certificate it "
       "signed (mutual TLS)");
+  app.add_flag("--exit-with-stdin", c->exit_with_stdin,
+               "drain and exit when stdin reaches end of file (for a parent "
+               "that holds a pipe to it: the server ends with the parent)");
   Add(app, "--health-listen", &c->health_listen, "DOT_HEALTH_LISTEN",
       "plaintext address serving only gRPC health (e.g. 127.0.0.1:50052), "
       "for health checks of a TLS server; default: none");

@@ -32,6 +32,10 @@ struct ServerConfig {
   // 127.0.0.1:50052), for a container health check when the main port
   // speaks TLS; "": none.
   std::string health_listen;
+  // Drain and exit when stdin reaches end of file: a parent that starts
+  // the server (Blender's "Run Locally") keeps a pipe to it open, so the
+  // server ends with its parent however the parent ends.
+  bool exit_with_stdin = false;
   ServiceOptions service;
   ComputePoolOptions pool;
   DelaunayHelperOptions helpers;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <thread>
 
 #include "config.h"
 #include "dot_server.h"
@@ -88,6 +89,16 @@ int main(int argc, char** argv) {
           spdlog::error("{}; exiting so that a supervisor restarts it", why);
           kill(getpid(), SIGUSR1);
         });
+  }
+  if (config.exit_with_stdin) {
+    // Detached: it lives as long as the process, blocked on read(2).
+    std::thread([] {
+      char buf[256];
+      while (::read(STDIN_FILENO, buf, sizeof buf) > 0) {
+      }
+      spdlog::info("stdin closed: the parent is gone");
+      kill(getpid(), SIGTERM);
+    }).detach();
   }
   int sig = 0;
   sigwait(&signals, &sig);

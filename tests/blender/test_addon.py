@@ -213,6 +213,29 @@ def test_fill_holes_object_mode():
     assert f1 > f0
 
 
+def test_fill_holes_merges_split_vertices_first():
+    """A mesh imported with split vertices (OBJ/STL exporters write seams
+    twice): before, the add-on sent it as it was and holes through a seam
+    failed ("vertex 15 repeats vertex 2"); dotctl, which repairs, filled
+    them all."""
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12)
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.85)
+    delete_faces(sphere, lambda c: c.x > 0.75 and abs(c.z) < 0.3)
+    bm = object_bmesh(sphere)
+    seam = [e for e in bm.edges
+            if abs(e.verts[0].co.y) < 1e-6 and abs(e.verts[1].co.y) < 1e-6
+            and e.verts[0].co.x < 0 and not e.is_boundary]
+    bmesh.ops.split_edges(bm, edges=seam)  # coincident vertices along y=0
+    bm.to_mesh(sphere.data)
+    bm.free()
+    v0, _, b0 = counts(sphere)
+    assert seam and b0 > 0
+    assert bpy.ops.mesh.dot_fill_holes() == {'FINISHED'}
+    v1, _ = check_mesh(sphere, boundary_edges=0)  # the seam merged, holes filled
+
+
 def test_fill_holes_edit_mode_options():
     clear_scene()
     bpy.ops.mesh.primitive_grid_add(x_subdivisions=20, y_subdivisions=20,

@@ -67,6 +67,45 @@ TEST(ServerProcessTest, SigtermDrainsInFlightWorkAndExitsZero) {
   EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
+TEST(ServerProcessTest, ExitWithStdinEndsWhenTheParentsPipeCloses) {
+  // Before: Blender's "Run Locally" server kept listening after Blender was
+  // killed (no atexit hook runs). Now the parent holds a pipe to its stdin.
+  const std::string address =
+      "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
+  std::vector<std::string> args = {DOT_SERVER_PATH,
+                                   "--listen",
+                                   address,
+                                   "--metrics-port",
+                                   "0",
+                                   "--log-level",
+                                   "warn",
+                                   "--exit-with-stdin"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[1]);
+  pid_t pid = -1;
+  ASSERT_EQ(::posix_spawn(&pid, DOT_SERVER_PATH, &actions, nullptr, argv.data(),
+                          environ),
+            0);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_fds[0]);
+  auto channel =
+      grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+  ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
+                                        std::chrono::seconds(10)));
+  ::close(pipe_fds[1]);  // the parent is gone
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);  // it exits by itself
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
 TEST(ServerProcessTest, ProgressIsStreamedForLongRuns) {
   auto s = testing::StartServer(testing::LoopbackConfig());
   auto request = testing::CurveRequest(

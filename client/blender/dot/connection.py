@@ -53,8 +53,12 @@ def local_server(executable="dot-server", wait_s=30.0):
         address = f"127.0.0.1:{_free_port()}"
         process = subprocess.Popen(
             [path, "--listen", address, "--metrics-port", "0",
-             "--log-level", "warn", "--drain-seconds", "1"],
-            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+             "--log-level", "warn", "--drain-seconds", "1",
+             "--exit-with-stdin"],
+            # Blender holds the pipe's only write end: however Blender
+            # ends (killed, it runs no atexit hook), the server reads EOF
+            # and exits instead of listening on.
+            stdin=subprocess.PIPE, stdout=subprocess.DEVNULL)
         _local.update(process=process, address=address, executable=executable)
     with dot_client.Client(address) as c:
         deadline = time.monotonic() + wait_s

@@ -156,6 +156,23 @@ class _Union:
         self.parent[self.find(a)] = self.find(b)
 
 
+def merge_coincident(bm):
+    """Merges vertices at exactly the same position into the first one, as
+    dotctl's repair does; returns how many were merged. (remove_doubles
+    merges by distance, and at a tiny distance missed exact copies.)"""
+    first = {}
+    targets = {}
+    for v in bm.verts:
+        key = tuple(v.co)
+        if key in first:
+            targets[v] = first[key]
+        else:
+            first[key] = v
+    if targets:
+        bmesh.ops.weld_verts(bm, targetmap=targets)
+    return len(targets)
+
+
 def add_fill(bm, result, vertex_count, owner, keep_vertices=None):
     """Merges a FillHoles result made with no_repair from `triangles(bm)`
     into bm: the output's first vertices are bm's, its first len(owner)

@@ -417,6 +417,11 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
     skip_longest: BoolProperty(
         name="Skip Longest Border", default=False,
         description="Leave the longest border open (a terrain's rim)")
+    merge_duplicates: BoolProperty(
+        name="Merge Duplicate Vertices", default=True,
+        description="First merge vertices at exactly the same position, as "
+        "dotctl's repair does: a mesh imported with split vertices (OBJ, "
+        "STL) otherwise has holes that repeat a vertex and cannot be filled")
     preset: EnumProperty(
         name="Weights", default='DEFAULT', items=[
             ('DEFAULT', "Default", "Squared dihedral angles with a little "
@@ -439,6 +444,7 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
         layout.prop(self, "max_hole_edges")
         layout.prop(self, "max_hole_diameter")
         layout.prop(self, "skip_longest")
+        layout.prop(self, "merge_duplicates")
         layout.prop(self, "preset")
         self.draw_weights(layout, self.preset == 'CUSTOM')
 
@@ -453,12 +459,21 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
     def prepare(self, context):
         obj, bm, edit = self._bmesh(context)
         try:
+            merged = 0
+            if self.merge_duplicates:
+                merged = geometry.merge_coincident(bm)
+                if merged and edit:
+                    bmesh.update_edit_mesh(obj.data, destructive=True)
+                elif merged:
+                    bm.to_mesh(obj.data)
+                    obj.data.update()
             if not any(e.is_boundary for e in bm.edges):
                 self.report({'INFO'}, "DOT: the mesh has no holes")
                 return None
             vertices = geometry.vertex_array(bm)
             faces, owner = geometry.triangles(bm)
-            state = {"owner": owner, "counts": (len(bm.verts), len(bm.faces))}
+            state = {"owner": owner, "counts": (len(bm.verts), len(bm.faces)),
+                     "merged": merged}
         finally:
             if not edit:
                 bm.free()
@@ -496,10 +511,13 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
                     for h in r.holes if h.status not in ("filled", "skipped")]
         for p in problems:
             self.report({'WARNING'}, f"DOT: {p}")
+        merged = state.get("merged", 0)
         self.report({'INFO'}, f"DOT: {r.filled} of {r.loops} holes filled"
                     f" ({r.skipped} skipped), +{r.added_vertices} vertices, "
                     f"+{r.added_faces} faces"
-                    + (", closed" if r.closed else ""))
+                    + (", closed" if r.closed else "")
+                    + (f"; merged {merged} duplicate vertices first"
+                       if merged else ""))
         return {'FINISHED'}
 
 
