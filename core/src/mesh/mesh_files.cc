@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -141,49 +143,155 @@ Status CheckPlyHeader(const std::string& path) {
 // CGAL 5.5 resizes to the counts the file states, so a 70-byte file
 // claiming a face of 2*10^9 corners made it allocate 16 GB (found by
 // mesh_file_fuzz). Each vertex, face and corner takes at least one byte.
-bool ReadOff(const std::string& path, std::vector<Point>* points,
-             std::vector<std::vector<std::size_t>>* polygons) {
+// The text item that starts at or after byte `offset` of the file at
+// `path`: its 1-based line, and that line's words (none at the end).
+struct OffItem {
+  size_t line = 1;
+  std::vector<std::string> words;
+};
+OffItem ItemAt(const std::string& path, std::streamoff offset) {
+  std::ifstream in(path, std::ios::binary);
+  OffItem item;
+  char c;
+  for (std::streamoff i = 0; i < offset && in.get(c); ++i)
+    item.line += c == '\n';
+  while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+    item.line += c == '\n';
+  }
+  if (!in) return item;
+  std::string text(1, c), rest;
+  std::getline(in, rest);
+  std::istringstream words(text + rest);
+  for (std::string w; words >> w && w[0] != '#';) item.words.push_back(w);
+  return item;
+}
+
+Status ReadOff(const std::string& path, std::vector<Point>* points,
+               std::vector<std::vector<std::size_t>>* polygons) {
   std::error_code ec;
   const auto bytes =
       static_cast<std::size_t>(std::filesystem::file_size(path, ec));
-  if (ec) return false;
+  if (ec) return InvalidArgument("cannot read mesh file '" + path + "'");
   std::ifstream in(path, std::ios::binary);
+  bool binary = false;            // "OFF BINARY": no lines to name
+  std::streamoff item_start = 0;  // where the vertex or face being read began
+  OffItem item;
+  // Why the item that begins at item_start could not be read, by line.
+  auto at = [&](const std::string& what) {
+    if (binary) return InvalidArgument("'" + path + "': " + what);
+    return InvalidArgument("'" + path + "' line " + std::to_string(item.line) +
+                           ": " + what);
+  };
+  auto begin_item = [&] {
+    in.clear(in.rdstate() & ~std::ios::failbit);
+    item_start = in.tellg();
+  };
+  auto read_item = [&] {
+    in.clear();
+    item = ItemAt(path, item_start);
+    return item.words;
+  };
+  if (bytes == 0) return InvalidArgument("'" + path + "' is empty");
   CGAL::File_scanner_OFF scanner(in);
-  if (in.fail() || scanner.size_of_vertices() > bytes ||
-      scanner.size_of_facets() > bytes) {
-    return false;
+  binary = scanner.binary();
+  if (in.fail()) {
+    return InvalidArgument("'" + path +
+                           "' has no OFF header ('OFF', then the counts of "
+                           "vertices, faces and edges)");
+  }
+  if (scanner.size_of_vertices() > bytes || scanner.size_of_facets() > bytes) {
+    return InvalidArgument(
+        "'" + path + "' declares " +
+        std::to_string(scanner.size_of_vertices()) + " vertices and " +
+        std::to_string(scanner.size_of_facets()) + " faces, more than its " +
+        std::to_string(bytes) + " bytes can hold");
   }
   points->resize(scanner.size_of_vertices());
-  for (Point& p : *points) {
+  for (std::size_t v = 0; v < points->size(); ++v) {
     double x = 0, y = 0, z = 0, w = 1, ignored = 0;
     unsigned char r = 0, g = 0, b = 0;
+    begin_item();
     scanner.scan_vertex(x, y, z, w);
     if (scanner.has_normals()) scanner.scan_normal(ignored, ignored, ignored);
     if (scanner.has_vcolors()) scanner.scan_color(r, g, b);
     if (scanner.has_textures()) scanner.scan_texture(ignored, ignored);
-    if (!in.good() || w == 0) return false;
-    p = Point(x / w, y / w, z / w);
+    if (!in.good()) {
+      const std::vector<std::string> words = read_item();
+      std::string bad;
+      for (const std::string& word : words) {
+        char* end = nullptr;
+        const double value = std::strtod(word.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(value)) {
+          bad = word;
+          break;
+        }
+      }
+      return at("vertex " + std::to_string(v) + " of " +
+                std::to_string(points->size()) +
+                (words.empty() ? ": the file ends before it"
+                 : bad.empty() ? ": too few coordinates"
+                               : ": '" + bad + "' is not a finite number"));
+    }
+    if (w == 0) return at("vertex " + std::to_string(v) + " has w = 0");
+    (*points)[v] = Point(x / w, y / w, z / w);
   }
   polygons->resize(scanner.size_of_facets());
   std::size_t corners = 0;
   for (std::size_t f = 0; f < polygons->size(); ++f) {
     std::size_t no = std::size_t(-1);
+    begin_item();
     scanner.scan_facet(no, f);
-    if ((!in.eof() && !in.good()) || no == std::size_t(-1)) return false;
+    if ((!in.eof() && !in.good()) || no == std::size_t(-1)) {
+      return at("face " + std::to_string(f) + " of " +
+                std::to_string(polygons->size()) +
+                (read_item().empty() ? ": the file ends before it"
+                                     : ": its corner count is not a number"));
+    }
     corners += no;
-    if (no > bytes || corners > bytes) return false;
+    if (no > bytes || corners > bytes) {
+      read_item();
+      return at("face " + std::to_string(f) + " declares " +
+                std::to_string(no) + " corners, more than the file holds");
+    }
     std::vector<std::size_t>& face = (*polygons)[f];
     face.resize(no);
     for (std::size_t j = 0; j < no; ++j) {
       scanner.scan_facet_vertex_index(face[j], j + 1, f);
-      if (!in || face[j] >= points->size()) return false;
+      if (!in) {
+        const std::vector<std::string> words = read_item();
+        const std::string word = j + 1 < words.size() ? words[j + 1] : "";
+        char* end = nullptr;
+        const long long index = std::strtoll(word.c_str(), &end, 10);
+        if (word.empty()) {
+          return at("face " + std::to_string(f) + " has fewer than its " +
+                    std::to_string(no) + " corners");
+        }
+        if (*end != '\0') {
+          return at("face " + std::to_string(f) + ", corner " +
+                    std::to_string(j) + ": '" + word +
+                    "' is not a vertex index");
+        }
+        return at("face " + std::to_string(f) + " has vertex index " +
+                  std::to_string(index) + ", outside 0.." +
+                  std::to_string(points->size() - 1));
+      }
+      if (face[j] >= points->size()) {
+        read_item();
+        return at("face " + std::to_string(f) + " has vertex index " +
+                  std::to_string(face[j]) + ", outside 0.." +
+                  std::to_string(points->size() - 1));
+      }
     }
     if (scanner.has_fcolors()) {
       unsigned char r = 0, g = 0, b = 0;
       scanner.scan_color(r, g, b);
     }
   }
-  return !in.fail();
+  if (in.fail() && !in.eof()) {
+    read_item();
+    return at("the file does not parse here");
+  }
+  return OkStatus();
 }
 
 }  // namespace
@@ -206,8 +314,13 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
   try {
-    ok = ext == ".off" ? ReadOff(path, &points, &polygons)
-                       : CGAL::IO::read_polygon_soup(path, points, polygons);
+    if (ext == ".off") {
+      const Status s = ReadOff(path, &points, &polygons);
+      if (!s.ok()) return s;
+      ok = true;
+    } else {
+      ok = CGAL::IO::read_polygon_soup(path, points, polygons);
+    }
   } catch (const std::exception& e) {
     return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
                            " file: " + e.what());
