@@ -10,42 +10,19 @@ place in the stream, the second its mesh and summary, the stream OK.
 
 Usage: batch_raw_messages_test.py PATH/TO/dot-server
 """
-import socket
 import struct
 import subprocess
 import sys
-import time
 
 import grpc
 
-
-def varint(n):
-    out = b""
-    while True:
-        b = n & 0x7F
-        n >>= 7
-        out += bytes([b | (0x80 if n else 0)])
-        if not n:
-            return out
-
-
-def field(number, wire_type, payload):
-    key = varint(number << 3 | wire_type)
-    if wire_type == 2:
-        return key + varint(len(payload)) + payload
-    return key + payload
+from raw_wire import field, free_port
 
 
 def request(request_id, points):
     coordinates = b"".join(struct.pack("<d", c) for p in points for c in p)
     polygon = field(1, 2, coordinates)  # Polygon.coordinates, packed
     return field(1, 2, request_id.encode()) + field(2, 2, polygon)
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def main():

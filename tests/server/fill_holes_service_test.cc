@@ -25,13 +25,9 @@ PolygonSoup ToSoup(const MeshData& m) {
   return s;
 }
 
-// A torus of nu x nv quads with `holes` holes cut out of it.
+// A torus of nu x nv quads with `holes` holes of 120 faces cut out of it.
 MeshData HoleyTorus(int nu, int nv, int holes) {
-  MeshData holey, removed;
-  EXPECT_TRUE(
-      CutHoles(testing::BumpyTorus(nu, nv), holes, 120, 3, &holey, &removed)
-          .ok());
-  return holey;
+  return testing::HoleyTorus(nu, nv, holes, 120);
 }
 
 TEST(FillHolesServiceTest, AMillionFacesStreamInAndOutAsFilledLocally) {

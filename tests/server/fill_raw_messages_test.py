@@ -15,7 +15,6 @@ Raw bytes to a real dot-server on loopback, each case a defect once seen:
 Usage: fill_raw_messages_test.py PATH/TO/dot-server
 """
 import signal
-import socket
 import struct
 import subprocess
 import sys
@@ -24,22 +23,7 @@ import time
 
 import grpc
 
-
-def varint(n):
-    out = b""
-    while True:
-        b = n & 0x7F
-        n >>= 7
-        out += bytes([b | (0x80 if n else 0)])
-        if not n:
-            return out
-
-
-def field(number, wire_type, payload):
-    key = varint(number << 3 | wire_type)
-    if wire_type == 2:
-        return key + varint(len(payload)) + payload
-    return key + payload
+from raw_wire import field, free_port, varint
 
 
 def first_message(request_id, time_budget_ms=0):
@@ -50,12 +34,6 @@ def first_message(request_id, time_budget_ms=0):
     faces = b"".join(varint(i) for i in (0, 1, 2))
     return (field(1, 2, request_id.encode()) + field(2, 2, options) +
             field(3, 2, coordinates) + field(4, 2, faces))
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def start(server_path, *flags):

@@ -26,11 +26,7 @@ MeshData GridWithSquareHole(int n, int lo, int hi) {
 }
 
 MeshData HoleyTorus(int nu, int nv, int holes) {
-  MeshData holey, removed;
-  EXPECT_TRUE(
-      CutHoles(testing::BumpyTorus(nu, nv), holes, 60, 3, &holey, &removed)
-          .ok());
-  return holey;
+  return testing::HoleyTorus(nu, nv, holes, 60);
 }
 
 TEST(FillLimitsTest, HighDensityStopsAtTheCapAndKeepsTheDotPatch) {
