@@ -4,7 +4,7 @@
 namespace dot::server {
 
 ComputePool::ComputePool(const ComputePoolOptions& options)
-    : capacity_(options.queue_size) {
+    : threads_(options.threads), capacity_(options.queue_size) {
   for (int i = 0; i < options.threads; ++i) {
     workers_.emplace_back([this] { Work(); });
   }

@@ -44,13 +44,14 @@ class ComputePool {
   bool TryRunHere(const std::function<void()>& task);
   int queued() const;
   int busy() const;
-  int threads() const { return static_cast<int>(workers_.size()); }
+  int threads() const { return threads_; }
   int capacity() const { return capacity_; }
 
  private:
   void Work();
   int LargeSlots() const { return std::max(1, threads() - 1); }
   bool Runnable() const;  // under mu_: a queued task may start now
+  const int threads_;     // not workers_.size(): workers read it as they start
   const int capacity_;
   mutable std::mutex mu_;
   std::condition_variable cv_;

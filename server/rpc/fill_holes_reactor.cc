@@ -72,7 +72,11 @@ void FillHolesReactor::OnReadDone(bool ok) {
     FinishWith(s);
     return;
   }
-  StartRead(&request_);
+  // Under the lock, so that a timer either finished the call before (no
+  // read after Finish) or finds this read outstanding. gRPC runs the
+  // reaction on its executor, never inline here.
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!finished_) StartRead(&request_);
 }
 
 grpc::Status FillHolesReactor::Accept() {
@@ -97,6 +101,7 @@ grpc::Status FillHolesReactor::Accept() {
       job_ = std::move(job);
     }
     if (!refused.ok()) return refused;
+    first_message_timer_.Cancel();  // the job's deadline bounds it now
     // Options are checked before the mesh is read, not after.
     FillOptions options;
     const Status s = wire::FillOptionsFromWire(m.options(), &options);
@@ -117,10 +122,23 @@ grpc::Status FillHolesReactor::Accept() {
             "the mesh did not arrive within the time limit"};
   }
   const Status s = reader_.Add(m);
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    messages_read_ = reader_.messages();
+  }
   if (!s.ok()) return wire::ToGrpcStatus(s);
   const int64_t bytes =
       FillMemoryBytes(static_cast<int64_t>(reader_.vertices()),
                       static_cast<int64_t>(reader_.faces()));
+  if (bytes > runner_->options().fill_memory_bytes) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "this mesh needs about " + std::to_string(bytes >> 20) +
+                " MiB to fill, more than the server's memory for FillHoles "
+                "calls (" +
+                std::to_string(runner_->options().fill_memory_bytes >> 20) +
+                " MiB); send it in parts or ask for a larger "
+                "--fill-memory-mb"};
+  }
   if (!ChargeUpTo(bytes)) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,
             "the server's memory for FillHoles calls (" +
@@ -140,27 +158,37 @@ bool FillHolesReactor::ChargeUpTo(int64_t bytes) {
 
 void FillHolesReactor::OnUploadTimer() {
   std::shared_ptr<Job> job;
+  size_t messages = 0;
   {
+    // The decision and the claim to finish are one step: a half-close
+    // handled meanwhile (uploading_ cleared) or an error answered first
+    // (finished_) wins, and the timer does nothing.
     std::lock_guard<std::mutex> lock(mu_);
     if (!uploading_ || finished_) return;
+    finished_ = true;
+    uploading_ = false;
     job = job_;
+    messages = messages_read_;
   }
+  grpc::Status status;
   if (job && job->stop == StopReason::kNone && Clock::now() < job->deadline &&
       runner_->draining()) {
     job->Stop(StopReason::kDrain);
   }
   if (job && job->stop == StopReason::kDrain) {
-    FinishWith(StoppedStatus(StopReason::kDrain));
-    return;
-  }
-  if (job) {
-    job->Stop(job->deadline_is_limit ? StopReason::kServerBudget
-                                     : StopReason::kClientDeadline);
-  }
-  FinishWith({grpc::StatusCode::DEADLINE_EXCEEDED,
+    status = StoppedStatus(StopReason::kDrain);
+  } else {
+    if (job) {
+      job->Stop(job->deadline_is_limit ? StopReason::kServerBudget
+                                       : StopReason::kClientDeadline);
+    }
+    status = {grpc::StatusCode::DEADLINE_EXCEEDED,
               "the mesh did not arrive within the time limit (" +
-                  std::to_string(reader_.messages()) +
-                  " messages arrived, and no end of the upload)"});
+                  std::to_string(messages) +
+                  " messages arrived, and no end of the upload)"};
+  }
+  final_status_ = status;
+  Finish(status);
 }
 
 void FillHolesReactor::StartFill() {

@@ -68,7 +68,8 @@ class FillHolesReactor final
   grpc::ByteBuffer request_;  // the read in flight
   std::shared_ptr<Job> job_;
   grpc::Status final_status_;
-  int64_t charged_ = 0;  // FillHoles memory held by this call
+  int64_t charged_ = 0;       // FillHoles memory held by this call
+  size_t messages_read_ = 0;  // under mu_: for the timers' message
 
   // Input and output of the fill; touched by the compute thread only while
   // the job runs, by the reactor only before and after.
