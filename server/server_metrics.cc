@@ -5,6 +5,7 @@
 #include <civetweb.h>
 #include <prometheus/text_serializer.h>
 
+#include <string>
 #include <string_view>
 
 namespace dot::server {
@@ -44,11 +45,14 @@ int AnswerAllButGetMetrics(mg_connection* conn) {
     reason = "Not Found";
     body = "not found: the metrics are at /metrics\n";
   }
-  mg_printf(conn,
-            "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\n"
-            "%sConnection: close\r\n\r\n",
-            status, reason, type, body.size(), allow);
-  if (method != "HEAD") mg_write(conn, body.data(), body.size());
+  // Assembled here and written with mg_write: civetweb's mg_printf formats
+  // on the same small stack (it overflowed under AddressSanitizer).
+  std::string answer = "HTTP/1.1 " + std::to_string(status) + " " + reason +
+                       "\r\nContent-Type: " + type +
+                       "\r\nContent-Length: " + std::to_string(body.size()) +
+                       "\r\n" + allow + "Connection: close\r\n\r\n";
+  if (method != "HEAD") answer.append(body);
+  mg_write(conn, answer.data(), answer.size());
   return status;
 }
 
