@@ -221,6 +221,10 @@ Status FillHolesReactor::Fill(Job& job, const Control& control) {
       static_cast<int64_t>(asked > 0 ? std::min(asked, cap) : cap);
   options.all_space_max_vertices = job.options.all_space_max_vertices;
   options.threads = runner_->compute_threads();
+  // What the log says if the fill stops before it has more to say.
+  job.log_detail =
+      "received_vertices=" + std::to_string(soup_.vertices.size()) +
+      " received_faces=" + std::to_string(soup_.faces.size());
   MeshData mesh;
   s = reader_.options().no_repair()
           ? TriangulateSoup(soup_, control, &mesh)

@@ -10,6 +10,7 @@
 #include <future>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace dot::server {
@@ -35,6 +36,12 @@ TEST(ComputePoolTest, LargeTasksLeaveASlotForSmallOnes) {
   // Liveness, not timing: the small task runs while every large one waits.
   EXPECT_EQ(small_ran.get_future().wait_for(std::chrono::seconds(60)),
             std::future_status::ready);
+  // One large task takes the other slot (small ones go first, so it may
+  // start after the small one ran); a second never does while it holds it.
+  for (int i = 0; i < 60000 && large_started.load() == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_EQ(large_started.load(), 1);  // threads - 1 slots for large tasks
   release.set_value();
 }
