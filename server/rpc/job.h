@@ -62,9 +62,14 @@ struct Job {
     cancel = true;
   }
   // The reason a gRPC OnCancel means: the client's deadline if it has
-  // passed, else the client's cancel.
+  // passed, else the client's cancel. The server's view of the deadline is
+  // the client's timeout counted from when the call arrived, so it falls a
+  // little after the client's own: the client's cancel at its deadline
+  // arrives first. A cancel within kDeadlineSlack of it counts as the
+  // deadline.
   void StopForCancel(std::chrono::system_clock::time_point client_deadline) {
-    Stop(std::chrono::system_clock::now() >= client_deadline
+    constexpr auto kDeadlineSlack = std::chrono::milliseconds(500);
+    Stop(std::chrono::system_clock::now() + kDeadlineSlack >= client_deadline
              ? StopReason::kClientDeadline
              : StopReason::kClientCancel);
   }
