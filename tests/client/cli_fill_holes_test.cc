@@ -122,8 +122,8 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
   EXPECT_NE(r.out.find("\"report\":null"), std::string::npos) << r.out;
   // A hole that does not exist (was: exit 0, the mesh unchanged).
   for (const char* holes : {"99", "-1"}) {
-    r = Dotctl("fill-holes --local " + Path("holey.off") + " --holes=" +
-               holes + " -o " + Path("none.off"));
+    r = Dotctl("fill-holes --local " + Path("holey.off") + " --holes=" + holes +
+               " -o " + Path("none.off"));
     EXPECT_EQ(r.code, 2) << holes << ": " << r.out;
     EXPECT_NE(r.out.find(std::string("there is no hole ") + holes),
               std::string::npos)
@@ -131,9 +131,10 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
   }
   // --output-format on stdout (was: always OFF), and /dev/stdin as input
   // (was: refused, while triangulate took it).
-  r = Dotctl("fill-holes --local /dev/stdin --input-format off -o - "
-             "--output-format obj < " +
-             Path("holey.off") + " 2>/dev/null | head -1");
+  r = Dotctl(
+      "fill-holes --local /dev/stdin --input-format off -o - "
+      "--output-format obj < " +
+      Path("holey.off") + " 2>/dev/null | head -1");
   EXPECT_EQ(r.out.rfind("v ", 0), 0u) << r.out;
 
   // A selection that leaves nothing: every selected hole filled, exit 0,
