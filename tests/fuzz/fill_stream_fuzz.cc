@@ -30,6 +30,7 @@
 #include "google/protobuf/stubs/logging.h"
 #include "wire/fill_wire.h"
 #include "wire/wire.h"
+#include "wire_oracle.h"
 
 namespace v1 = dot::v1;
 
@@ -40,18 +41,10 @@ namespace {
 constexpr size_t kMaxVertices = 300;
 constexpr size_t kMaxFaces = 600;
 
-[[noreturn]] void Fail(const std::string& what) {
-  std::fprintf(stderr, "ORACLE FAILED: %s\n", what.c_str());
-  std::abort();
-}
+using dot::fuzz::Fail;
 
 void CheckRefusal(const dot::Status& s) {
-  if (s.ok()) Fail("refusal with an OK status");
-  if (s.message.empty()) Fail("refusal without a message");
-  if (dot::wire::ToGrpcStatus(s).ok()) {
-    Fail("failure " + std::string(dot::StatusCodeName(s.code)) +
-         " sent as gRPC OK");
-  }
+  dot::fuzz::CheckRefusal(s, /*no_triangulation_is_ok=*/false);
 }
 
 void CheckFill(const dot::MeshData& input, const dot::FillResult& r) {

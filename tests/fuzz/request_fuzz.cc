@@ -26,6 +26,7 @@
 #include "google/protobuf/stubs/logging.h"
 #include "tetgen_child.h"
 #include "wire/wire.h"
+#include "wire_oracle.h"
 
 namespace v1 = dot::v1;
 
@@ -37,20 +38,10 @@ constexpr size_t kMaxRequestIdBytes = 256;
 constexpr size_t kMaxSolvedVertices = 12;
 constexpr uint32_t kDeadlineMs = 200;
 
-[[noreturn]] void Fail(const std::string& what) {
-  std::fprintf(stderr, "ORACLE FAILED: %s\n", what.c_str());
-  std::abort();
-}
+using dot::fuzz::Fail;
 
 void CheckRefusal(const dot::Status& s) {
-  if (s.ok()) Fail("refusal with an OK status");
-  if (s.message.empty()) Fail("refusal without a message");
-  if (dot::wire::ToGrpcStatus(s).ok()) {
-    if (s.code != dot::StatusCode::kNoTriangulation) {
-      Fail("failure " + std::string(dot::StatusCodeName(s.code)) +
-           " sent as gRPC OK");
-    }
-  }
+  dot::fuzz::CheckRefusal(s, /*no_triangulation_is_ok=*/true);
 }
 
 void CheckMesh(const dot::Options& options, const dot::Result& r) {

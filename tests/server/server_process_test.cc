@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // The dot-server binary itself: SIGTERM finishes in-flight work and exits 0.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -24,6 +25,26 @@ extern char** environ;
 namespace dot {
 namespace {
 
+// Starts args[0] with `args`, stdin from `stdin_fd` when >= 0; its pid, or
+// -1 when it could not be started.
+pid_t Spawn(std::vector<std::string> args, int stdin_fd = -1) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (stdin_fd >= 0) {
+    posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
+  }
+  pid_t pid = -1;
+  if (::posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(),
+                    environ) != 0) {
+    pid = -1;
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
 TEST(ServerProcessTest, SigtermDrainsInFlightWorkAndExitsZero) {
   const std::string address =
       "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
@@ -38,13 +59,8 @@ TEST(ServerProcessTest, SigtermDrainsInFlightWorkAndExitsZero) {
                                    "warn",
                                    "--threads",
                                    "1"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  ASSERT_EQ(::posix_spawn(&pid, DOT_SERVER_PATH, nullptr, nullptr, argv.data(),
-                          environ),
-            0);
+  const pid_t pid = Spawn(args);
+  ASSERT_GT(pid, 0);
   auto channel =
       grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
@@ -80,20 +96,10 @@ TEST(ServerProcessTest, ExitWithStdinEndsWhenTheParentsPipeCloses) {
                                    "--log-level",
                                    "warn",
                                    "--exit-with-stdin"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
   int pipe_fds[2];
-  ASSERT_EQ(::pipe(pipe_fds), 0);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], STDIN_FILENO);
-  posix_spawn_file_actions_addclose(&actions, pipe_fds[1]);
-  pid_t pid = -1;
-  ASSERT_EQ(::posix_spawn(&pid, DOT_SERVER_PATH, &actions, nullptr, argv.data(),
-                          environ),
-            0);
-  posix_spawn_file_actions_destroy(&actions);
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);  // the child gets only stdin
+  const pid_t pid = Spawn(args, pipe_fds[0]);
+  ASSERT_GT(pid, 0);
   ::close(pipe_fds[0]);
   auto channel =
       grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
@@ -140,13 +146,8 @@ TEST(ServerProcessTest, ListenerThatStopsAcceptingExitsNonZero) {
                                    "error",
                                    "--listener-patience-s",
                                    "2"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  ASSERT_EQ(::posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(),
-                          environ),
-            0);
+  const pid_t pid = Spawn(args);
+  ASSERT_GT(pid, 0);
   auto channel =
       grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
