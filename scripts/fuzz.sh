@@ -16,6 +16,11 @@
 #   FUZZ_WORK=DIR      scratch directory (kept); default a temporary one,
 #                      removed when every target passed
 #   FUZZ_BUILD_JOBS=N  parallel compile jobs (default 1: a 2-core machine)
+#   FUZZ_ASAN=0        build without AddressSanitizer (UBSan only) into
+#                      build-fuzz-fast/: several times faster, for long
+#                      campaigns; replay their corpus under ASan afterwards
+#   FUZZ_SEED=DIR      also start from the inputs in DIR/<target>/ (e.g. a
+#                      kept FUZZ_WORK/<target>/corpus of an earlier run)
 # Installs what it needs (as root, or with sudo): the build dependencies
 # (scripts/install-deps.sh) and clang-14 with libFuzzer (libclang-rt-14-dev).
 set -euo pipefail
@@ -53,7 +58,14 @@ if ((${#missing[@]})); then
 fi
 
 # Build: only the fuzz targets and the libraries they link.
-build=${BUILD_DIR:-build-fuzz}
+asan=${FUZZ_ASAN:-1}
+if [ "$asan" = 0 ]; then
+  build=${BUILD_DIR:-build-fuzz-fast}
+  asan_flag=OFF
+else
+  build=${BUILD_DIR:-build-fuzz}
+  asan_flag=ON
+fi
 launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
@@ -61,7 +73,7 @@ if command -v ccache >/dev/null; then
 fi
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-  "${launcher[@]}" -DDOT_FUZZ=ON -DDOT_BUILD_SERVICE=ON \
+  "${launcher[@]}" -DDOT_FUZZ=ON -DDOT_FUZZ_ASAN="$asan_flag" -DDOT_BUILD_SERVICE=ON \
   -DDOT_BUILD_TESTS=OFF -DDOT_BUILD_BENCH=OFF >/dev/null
 nice -n 19 cmake --build "$build" --target "${targets[@]}" \
   -j "${FUZZ_BUILD_JOBS:-1}"
@@ -96,6 +108,9 @@ for t in "${targets[@]}"; do
   rm -rf "$corpus"
   mkdir -p "$corpus" "$work/$t/artifacts"
   cp tests/fuzz/corpus/"$t"/* "$corpus"/
+  if [ -n "${FUZZ_SEED:-}" ] && [ -d "$FUZZ_SEED/$t" ]; then
+    find "$FUZZ_SEED/$t" -maxdepth 1 -type f -exec cp -t "$corpus" {} +
+  fi
   log=$work/$t/fuzz.log
   args=("$corpus" -max_total_time="$seconds" -max_len="$(max_len "$t")"
     -rss_limit_mb=2048 -timeout=10 -print_final_stats=1

@@ -230,6 +230,15 @@ Control JobRunner::ControlFor(Job& job) {
       metrics_->HelperStarts(helpers_->starts());
       return s;
     };
+    // Large fairing systems too: a cancel kills the solve at once.
+    control.solve_sparse = [this, &job](const SparseSystem& system,
+                                        std::vector<double>* x) {
+      const Status s =
+          helpers_->SolveSparse(system, x, &job.cancel, job.deadline,
+                                job.options.memory_budget_bytes);
+      metrics_->HelperStarts(helpers_->starts());
+      return s;
+    };
   }
   return control;
 }

@@ -31,8 +31,10 @@ TEST(CliLocalTest, TetgenAbortFailsTheInputNotDotctl) {
   const CliRun r = Dotctl("triangulate --local --delaunay tetgen --json " +
                           input + " --format obj -o -");
   EXPECT_EQ(r.code, 1) << r.out;  // a request failed (not a signal: -1)
-  EXPECT_NE(r.out.find("INTERNAL: the Delaunay helper process crashed"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find(
+          "INTERNAL: the helper process running the Delaunay step crashed"),
+      std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\"outcome\":\"call_failed\""), std::string::npos)
       << r.out;

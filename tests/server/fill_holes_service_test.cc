@@ -216,6 +216,32 @@ TEST(FillHolesServiceTest, TetgenAbortOnAHoleRimFailsTheCallNotTheServer) {
   EXPECT_TRUE(after.status.ok()) << after.status.error_message();
 }
 
+TEST(FillHolesServiceTest, LargeFairingSystemsAreSolvedInAHelper) {
+  // Before: fairing's sparse LU ran in the server's process, where a cancel
+  // or deadline could not stop it (0.6 s for a hole of 512 boundary
+  // vertices, minutes for larger ones). Now the helper solves it, with the
+  // answer of the in-process solve.
+  auto config = LoopbackConfig();
+  config.helpers.count = 1;
+  auto s = StartServer(config);
+  const MeshData m = testing::SphereWithCapCut(120, 240, 0.6);
+  const auto remote = client::FillRemote(*s.stub, "cap", {}, ToSoup(m), 60);
+  ASSERT_TRUE(remote.status.ok()) << remote.status.error_message();
+  ASSERT_EQ(remote.report.holes_size(), 1);
+  EXPECT_TRUE(remote.report.holes(0).faired())
+      << remote.report.holes(0).reason();
+  EXPECT_GT(remote.report.holes(0).refined_vertices(), kSolveSparseMinUnknowns);
+  EXPECT_EQ(s.server->helpers()->starts(), 1);  // CGAL's Delaunay: fairing
+  const client::FillOutcome local = client::FillLocal("cap", {}, ToSoup(m));
+  ASSERT_TRUE(local.status.ok()) << local.status.error_message();
+  EXPECT_EQ(remote.mesh.triangles, local.mesh.triangles);
+  ASSERT_EQ(remote.mesh.vertices.size(), local.mesh.vertices.size());
+  for (size_t v = 0; v < local.mesh.vertices.size(); ++v) {
+    ASSERT_LT(Distance(remote.mesh.vertices[v], local.mesh.vertices[v]), 1e-9)
+        << v;
+  }
+}
+
 TEST(FillHolesServiceTest, FillMemoryIsChargedAsTheMeshArrives) {
   // Before: uploads were charged to no budget (70 streams that never
   // half-closed took a server from 72 MB to 5.2 GB).

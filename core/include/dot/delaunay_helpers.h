@@ -1,16 +1,23 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// TetGen in helper processes. TetGen is neither thread-safe (file-scope
-// predicate state) nor crash-safe (it aborts or segfaults on some inputs),
-// so each tetrahedralization runs in a child process of its own from a small
-// pool: concurrent requests never share TetGen state, a crash fails only the
-// request that caused it, a cancel kills the child at once, and each child
-// is memory-capped with setrlimit. Dead children are restarted on demand.
+// TetGen, and fairing's sparse solves, in helper processes. TetGen is
+// neither thread-safe (file-scope predicate state) nor crash-safe (it aborts
+// or segfaults on some inputs), and neither it nor a sparse LU can be
+// interrupted, so each runs in a child process of its own from a small pool:
+// concurrent requests never share TetGen state, a crash fails only the
+// request that caused it, a cancel or deadline kills the child at once, and
+// each child is memory-capped with setrlimit. Dead children are restarted
+// on demand.
 //
-// Pipe protocol (host byte order):
-//   request:  uint64 memory budget (bytes the helper may grow by for this
-//             request; 0: its own cap only), uint64 n, then n * 3 doubles
-//   response: int32 status code, uint32 message length, message bytes,
-//             uint64 t, then t * 4 int32 corners and t * 4 int32 neighbours
+// Pipe protocol (host byte order): every request starts with uint32 kind
+// (HelperRequest) and uint64 memory budget (bytes the helper may grow by for
+// this request; 0: its own cap only); every reply with int32 status code,
+// uint32 message length, message bytes and uint64 count (0 unless OK).
+//   kTetrahedralize: uint64 n, n * 3 doubles ->
+//                    count * 4 int32 corners, count * 4 int32 neighbours
+//   kSolveSparse:    uint64 n, uint64 nonzeros, int32 rhs, nonzeros int32
+//                    rows, nonzeros int32 columns, nonzeros doubles,
+//                    n * rhs doubles (B, column-major) ->
+//                    count = n * rhs doubles (X, column-major)
 #ifndef DOT_DELAUNAY_HELPERS_H_
 #define DOT_DELAUNAY_HELPERS_H_
 
@@ -20,6 +27,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -36,6 +44,8 @@ inline constexpr bool kCanCapAddressSpace = false;
 #else
 inline constexpr bool kCanCapAddressSpace = true;
 #endif
+
+enum class HelperRequest : uint32_t { kTetrahedralize = 1, kSolveSparse = 2 };
 
 struct DelaunayHelperOptions {
   // Helper processes; -1: one per compute thread, 0: TetGen in-process
@@ -69,6 +79,11 @@ class DelaunayHelperPool {
                         const std::atomic<bool>* cancel,
                         std::chrono::steady_clock::time_point deadline,
                         int64_t memory_budget_bytes = 0);
+  // SolveSparseLu in a helper, on the same terms.
+  Status SolveSparse(const SparseSystem& system, std::vector<double>* x,
+                     const std::atomic<bool>* cancel,
+                     std::chrono::steady_clock::time_point deadline,
+                     int64_t memory_budget_bytes = 0);
   int64_t starts() const { return starts_; }  // helper processes started
   std::vector<pid_t> Pids() const;            // running helpers, for tests
 
@@ -83,10 +98,23 @@ class DelaunayHelperPool {
   // True (with the wait status) when the helper has ended by itself; it is
   // then cleaned up, ready to be spawned again.
   bool Reap(Helper* h, int* status);
-  Status Exchange(Helper* h, const std::vector<Vec3>& points,
-                  int64_t memory_budget_bytes, Tetrahedralization* out,
-                  const std::atomic<bool>* cancel,
-                  std::chrono::steady_clock::time_point deadline);
+  // One request to a free helper: `send` writes its body, `receive` reads
+  // the `count` items of `item_bytes` each of an answer (through `read`,
+  // which kills the helper on cancel or deadline). `what` names the work in
+  // messages.
+  using ReadFn = std::function<Status(void* data, size_t len)>;
+  using SendFn = std::function<bool(int fd)>;
+  using ReceiveFn = std::function<Status(uint64_t count, const ReadFn& read)>;
+  Status Call(HelperRequest kind, const std::string& what, size_t item_bytes,
+              const SendFn& send, const ReceiveFn& receive,
+              const std::atomic<bool>* cancel,
+              std::chrono::steady_clock::time_point deadline,
+              int64_t memory_budget_bytes);
+  Status Exchange(Helper* h, HelperRequest kind, const std::string& what,
+                  size_t item_bytes, const SendFn& send,
+                  const ReceiveFn& receive, const std::atomic<bool>* cancel,
+                  std::chrono::steady_clock::time_point deadline,
+                  int64_t memory_budget_bytes);
 
   const DelaunayHelperOptions config_;
   mutable std::mutex mu_;
@@ -96,7 +124,8 @@ class DelaunayHelperPool {
 };
 
 // The helper process's main loop: serve requests from `in_fd` until EOF
-// (in a build without TetGen, each answered kInvalidArgument).
+// (in a build without TetGen, tetrahedralizations are answered
+// kInvalidArgument).
 int RunDelaunayHelper(int in_fd, int out_fd);
 
 // A helper program's main: caps its address space as its arguments say

@@ -275,10 +275,14 @@ std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
   return "";
 }
 
-bool Closed(const std::vector<Triangle>& triangles) {
+// Whether every edge has two faces; false also when `ticker` stops the run.
+bool Closed(const std::vector<Triangle>& triangles, RunTicker& ticker) {
+  EdgeIndex index;
+  if (!BuildEdgeIndex(triangles, ticker, &index)) return false;
   bool closed = true;
-  ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& e) {
-    if (e.size() != 2) closed = false;
+  ForEachEdge(index, [&](const EdgeUses& e) {
+    closed = e.size() == 2 && ticker.Tick();
+    return closed;
   });
   return closed;
 }
@@ -393,12 +397,12 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       static_cast<int32_t>(out.mesh.vertices.size() - mesh.vertices.size());
   out.report.added_faces =
       static_cast<int32_t>(out.mesh.triangles.size() - mesh.triangles.size());
+  out.report.closed = Closed(out.mesh.triangles, between);
   if (!between.Poll()) {
     out = {};
     out.status = between.status();
     return out;
   }
-  out.report.closed = Closed(out.mesh.triangles);
   out.report.total_ms = MsSince(t_start);
   return out;
 }

@@ -20,25 +20,30 @@ struct HoleEdge {
 
 // Edges of `mesh` used by one face only, walked against that face; or the
 // first edge that breaks edge-manifoldness or orientation.
-Status BorderEdges(const MeshData& mesh, std::vector<HoleEdge>* border) {
-  const EdgeIndex index = BuildEdgeIndex(mesh.triangles);
+Status BorderEdges(const MeshData& mesh, RunTicker& ticker,
+                   std::vector<HoleEdge>* border) {
+  EdgeIndex index;
+  if (!BuildEdgeIndex(mesh.triangles, ticker, &index)) return ticker.status();
   Status status = OkStatus();
   ForEachEdge(index, [&](const EdgeUses& edge) {
-    if (!status.ok()) return;
-    const std::string name =
-        "edge " + std::to_string(edge.lo()) + "-" + std::to_string(edge.hi());
+    if (!ticker.Tick()) return (status = ticker.status()).ok();
+    const auto name = [&] {
+      return "edge " + std::to_string(edge.lo()) + "-" +
+             std::to_string(edge.hi());
+    };
     if (edge.size() > 2) {
-      status = InvalidArgument(name + " is shared by " +
+      status = InvalidArgument(name() + " is shared by " +
                                std::to_string(edge.size()) +
                                " faces (the mesh is not edge-manifold)");
     } else if (edge.size() == 2 && edge[0].forward == edge[1].forward) {
-      status = InvalidArgument(name + " runs the same way in faces " +
+      status = InvalidArgument(name() + " runs the same way in faces " +
                                std::to_string(edge[0].triangle) + " and " +
                                std::to_string(edge[1].triangle) +
                                " (the faces are not consistently oriented)");
     } else if (edge.size() == 1) {
       border->push_back({edge[0].to(), edge[0].from(), edge[0].triangle});
     }
+    return status.ok();
   });
   return status;
 }
@@ -160,7 +165,7 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops,
   loops->clear();
   RunTicker ticker(control, "the search for the mesh's holes");
   std::vector<HoleEdge> border;
-  Status s = BorderEdges(mesh, &border);
+  Status s = BorderEdges(mesh, ticker, &border);
   if (!s.ok()) return s;
   if (!ticker.Poll()) return ticker.status();
   // Deterministic walks: edges by start vertex, then end.

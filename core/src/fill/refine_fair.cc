@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // Liepa refinement and fairing of one patch with CGAL's Polygon Mesh
-// Processing (refine, fair; Eigen's sparse LU), on a small surface mesh made
-// of the patch and three rings of faces around it: enough for the fixed
-// neighbours of a Laplacian of order up to 3, and never the whole mesh.
+// Processing (refine, fair: Eigen's sparse LU, fair_solver.h), on a small
+// surface mesh made of the patch and three rings of faces around it: enough for
+// the fixed neighbours of a Laplacian of order up to 3, and never the whole
+// mesh.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
 #include <CGAL/Polygon_mesh_processing/refine.h>
@@ -14,6 +15,7 @@
 #include <unordered_map>
 
 #include "dot/fill_holes.h"
+#include "fill/fair_solver.h"
 #include "fill/mesh_topology.h"
 #include "fill/patch_check.h"
 #include "util/run_control.h"
@@ -250,14 +252,18 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
     t0 = std::chrono::steady_clock::now();
     std::vector<K::Point_3> refined;
     for (VertexIndex v : new_vertices) refined.push_back(sm.point(v));
+    const FairSolver solver(control, &ticker);
     report->faired = PMP::fair(
         sm, new_vertices,
-        CGAL::parameters::fairing_continuity(options.fairing_continuity));
+        CGAL::parameters::fairing_continuity(options.fairing_continuity)
+            .sparse_linear_solver(solver));
     report->fair_ms = MsSince(t0);
+    if (solver.stopped()) return ticker.status();
     if (!report->faired) {
-      report->reason =
-          "fairing failed (singular system): kept the refined "
-          "patch";
+      report->reason = "fairing failed (" +
+                       (solver.error().empty() ? std::string("singular system")
+                                               : solver.error()) +
+                       "): kept the refined patch";
     } else {
       HolePatch faired = unrefined;
       ExtractPatch(sm, is_context, nb.global, first_new_id, unscale, &faired);

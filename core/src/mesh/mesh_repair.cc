@@ -32,14 +32,16 @@ bool ZeroArea(const std::vector<Vec3>& v, const Triangle& t) {
 // faces, component by component (breadth first from each component's
 // first face); closed components end up with positive volume.
 Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
-              RepairReport* report) {
-  const EdgeIndex index = BuildEdgeIndex(*faces);
+              RunTicker& ticker, RepairReport* report) {
+  EdgeIndex index;
+  if (!BuildEdgeIndex(*faces, ticker, &index)) return ticker.status();
   // Per face side: the other use of that edge, or -1.
   std::vector<int32_t> across(3 * faces->size(), -1);
   Status status = OkStatus();
   ForEachEdge(index, [&](const EdgeUses& e) {
-    if (!status.ok()) return;
-    if (e.size() > 2) {
+    if (!ticker.Tick()) {
+      status = ticker.status();
+    } else if (e.size() > 2) {
       status = InvalidArgument(
           "edge " + std::to_string(e.lo()) + "-" + std::to_string(e.hi()) +
           " is shared by " + std::to_string(e.size()) + " faces (" +
@@ -50,6 +52,7 @@ Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
       across[3 * e[0].triangle + e[0].side] = 3 * e[1].triangle + e[1].side;
       across[3 * e[1].triangle + e[1].side] = 3 * e[0].triangle + e[0].side;
     }
+    return status.ok();
   });
   if (!status.ok()) return status;
   const size_t n = faces->size();
@@ -67,6 +70,7 @@ Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
     component.clear();
     bool closed = true;
     while (!queue.empty()) {
+      if (!ticker.Tick()) return ticker.status();
       const int32_t f = queue.back();
       queue.pop_back();
       component.push_back(f);
@@ -113,8 +117,9 @@ Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
 }
 
 // Vertices whose faces form more than one fan (joined across edges).
-int64_t CountNonManifoldVertices(size_t vertex_count,
-                                 const std::vector<Triangle>& faces) {
+Status CountNonManifoldVertices(size_t vertex_count,
+                                const std::vector<Triangle>& faces,
+                                RunTicker& ticker, int64_t* count) {
   // Union-find over face corners: corners of one vertex in faces sharing an
   // edge through it are one fan.
   std::vector<int32_t> parent(3 * faces.size());
@@ -131,20 +136,29 @@ int64_t CountNonManifoldVertices(size_t vertex_count,
     }
     return -1;
   };
-  ForEachEdge(BuildEdgeIndex(faces), [&](const EdgeUses& e) {
-    if (e.size() != 2) return;
-    for (int32_t v : {e.lo(), e.hi()}) {
-      parent[find(corner(e[0].triangle, v))] = find(corner(e[1].triangle, v));
+  EdgeIndex index;
+  if (!BuildEdgeIndex(faces, ticker, &index)) return ticker.status();
+  bool stopped = false;
+  ForEachEdge(index, [&](const EdgeUses& e) {
+    if (!ticker.Tick()) return !(stopped = true);
+    if (e.size() == 2) {
+      for (int32_t v : {e.lo(), e.hi()}) {
+        parent[find(corner(e[0].triangle, v))] = find(corner(e[1].triangle, v));
+      }
     }
+    return true;
   });
+  if (stopped) return ticker.status();
   std::vector<int32_t> fans(vertex_count, 0);
   for (size_t c = 0; c < parent.size(); ++c) {
+    if (!ticker.Tick()) return ticker.status();
     if (find(static_cast<int32_t>(c)) == static_cast<int32_t>(c)) {
       ++fans[faces[c / 3][c % 3]];
     }
   }
-  return std::count_if(fans.begin(), fans.end(),
-                       [](int32_t k) { return k > 1; });
+  *count =
+      std::count_if(fans.begin(), fans.end(), [](int32_t k) { return k > 1; });
+  return OkStatus();
 }
 
 }  // namespace
@@ -248,12 +262,10 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
         std::to_string(report->duplicate_faces) + ")");
   }
   if (!ticker.Poll()) return ticker.status();
-  s = Orient(out->vertices, &out->triangles, report);
+  s = Orient(out->vertices, &out->triangles, ticker, report);
   if (!s.ok()) return s;
-  if (!ticker.Poll()) return ticker.status();
-  report->non_manifold_vertices =
-      CountNonManifoldVertices(out->vertices.size(), out->triangles);
-  return OkStatus();
+  return CountNonManifoldVertices(out->vertices.size(), out->triangles, ticker,
+                                  &report->non_manifold_vertices);
 }
 
 }  // namespace dot

@@ -86,42 +86,103 @@ class GrowthLimit {
 
 }  // namespace
 
+namespace {
+
+// Writes a reply: status, then `count` items of `item_bytes` from each of
+// `arrays` in turn (nothing when the status is not OK).
+bool WriteReply(int fd, const Status& s, uint64_t count,
+                std::initializer_list<std::pair<const void*, size_t>> arrays) {
+  const int32_t code = static_cast<int32_t>(s.code);
+  const auto len = static_cast<uint32_t>(s.message.size());
+  if (!s.ok()) count = 0;
+  if (!WriteAll(fd, &code, sizeof code) || !WriteAll(fd, &len, sizeof len) ||
+      !WriteAll(fd, s.message.data(), len) ||
+      !WriteAll(fd, &count, sizeof count)) {
+    return false;
+  }
+  for (const auto& [data, item_bytes] : arrays) {
+    if (!WriteAll(fd, data, count * item_bytes)) return false;
+  }
+  return true;
+}
+
+Status OutOfMemory(const std::string& what) {
+  return MakeStatus(StatusCode::kResourceExhausted,
+                    what + " ran out of memory");
+}
+
+bool ServeTetrahedralize(int in_fd, int out_fd, uint64_t budget) {
+  uint64_t n = 0;
+  if (!ReadAll(in_fd, &n, sizeof n)) return false;
+  std::vector<Vec3> points(n);
+  if (!ReadAll(in_fd, points.data(), n * sizeof(Vec3))) return false;
+  Tetrahedralization t;
+  Status s;
+  {
+    const GrowthLimit limit(budget);
+    try {
+      s = TetgenTetrahedralize(points, &t);
+    } catch (const std::bad_alloc&) {  // copying TetGen's output
+      t = {};
+      s = OutOfMemory("the Delaunay step on " + std::to_string(n) + " points");
+    }
+  }
+  return WriteReply(out_fd, s, t.tets.size(),
+                    {{t.tets.data(), sizeof(t.tets[0])},
+                     {t.neighbors.data(), sizeof(t.neighbors[0])}});
+}
+
+bool ServeSolveSparse(int in_fd, int out_fd, uint64_t budget) {
+  uint64_t n = 0, nonzeros = 0;
+  int32_t rhs = 0;
+  if (!ReadAll(in_fd, &n, sizeof n) ||
+      !ReadAll(in_fd, &nonzeros, sizeof nonzeros) ||
+      !ReadAll(in_fd, &rhs, sizeof rhs) || rhs < 0) {
+    return false;
+  }
+  std::vector<double> x;
+  Status s;
+  const GrowthLimit limit(budget);
+  try {
+    SparseSystem system;
+    system.n = static_cast<int64_t>(n);
+    system.rhs = rhs;
+    system.rows.resize(nonzeros);
+    system.cols.resize(nonzeros);
+    system.values.resize(nonzeros);
+    system.b.resize(n * static_cast<uint64_t>(rhs));
+    if (!ReadAll(in_fd, system.rows.data(), nonzeros * sizeof(int32_t)) ||
+        !ReadAll(in_fd, system.cols.data(), nonzeros * sizeof(int32_t)) ||
+        !ReadAll(in_fd, system.values.data(), nonzeros * sizeof(double)) ||
+        !ReadAll(in_fd, system.b.data(), system.b.size() * sizeof(double))) {
+      return false;
+    }
+    s = SolveSparseLu(system, &x);
+  } catch (const std::bad_alloc&) {
+    x = {};
+    s = OutOfMemory("the sparse solve of " + std::to_string(n) + " unknowns");
+  }
+  return WriteReply(out_fd, s, x.size(), {{x.data(), sizeof(double)}});
+}
+
+}  // namespace
+
 int RunDelaunayHelper(int in_fd, int out_fd) {
   for (;;) {
-    uint64_t budget = 0, n = 0;
-    if (!ReadAll(in_fd, &budget, sizeof budget)) return 0;  // server closed
-    if (!ReadAll(in_fd, &n, sizeof n)) return 1;
-    std::vector<double> coords(3 * n);
-    if (!ReadAll(in_fd, coords.data(), coords.size() * sizeof(double)))
-      return 1;
-    std::vector<Vec3> points(n);
-    for (uint64_t i = 0; i < n; ++i) {
-      points[i] = {coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
+    uint32_t kind = 0;
+    uint64_t budget = 0;
+    if (!ReadAll(in_fd, &kind, sizeof kind)) return 0;  // server closed
+    if (!ReadAll(in_fd, &budget, sizeof budget)) return 1;
+    bool ok = false;
+    switch (static_cast<HelperRequest>(kind)) {
+      case HelperRequest::kTetrahedralize:
+        ok = ServeTetrahedralize(in_fd, out_fd, budget);
+        break;
+      case HelperRequest::kSolveSparse:
+        ok = ServeSolveSparse(in_fd, out_fd, budget);
+        break;
     }
-    Tetrahedralization t;
-    Status s;
-    {
-      const GrowthLimit limit(budget);
-      try {
-        s = TetgenTetrahedralize(points, &t);
-      } catch (const std::bad_alloc&) {  // copying TetGen's output
-        t = {};
-        s = MakeStatus(StatusCode::kResourceExhausted,
-                       "the Delaunay step ran out of memory on " +
-                           std::to_string(n) + " points");
-      }
-    }
-    const int32_t code = static_cast<int32_t>(s.code);
-    const auto len = static_cast<uint32_t>(s.message.size());
-    const uint64_t count = s.ok() ? t.tets.size() : 0;
-    if (!WriteAll(out_fd, &code, sizeof code) ||
-        !WriteAll(out_fd, &len, sizeof len) ||
-        !WriteAll(out_fd, s.message.data(), len) ||
-        !WriteAll(out_fd, &count, sizeof count) ||
-        !WriteAll(out_fd, t.tets.data(), count * sizeof(t.tets[0])) ||
-        !WriteAll(out_fd, t.neighbors.data(), count * sizeof(t.neighbors[0]))) {
-      return 1;
-    }
+    if (!ok) return 1;
   }
 }
 
@@ -229,6 +290,64 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
                                           const std::atomic<bool>* cancel,
                                           Clock::time_point deadline,
                                           int64_t memory_budget_bytes) {
+  const uint64_t n = points.size();
+  auto send = [&](int fd) {
+    return WriteAll(fd, &n, sizeof n) &&
+           WriteAll(fd, points.data(), n * sizeof(Vec3));
+  };
+  auto receive = [&](uint64_t count, const ReadFn& read) -> Status {
+    out->tets.resize(count);
+    out->neighbors.resize(count);
+    Status s = read(out->tets.data(), count * sizeof(out->tets[0]));
+    if (s.ok()) {
+      s = read(out->neighbors.data(), count * sizeof(out->neighbors[0]));
+    }
+    return s;
+  };
+  return Call(HelperRequest::kTetrahedralize, "the Delaunay step",
+              sizeof(out->tets[0]) + sizeof(out->neighbors[0]), send, receive,
+              cancel, deadline, memory_budget_bytes);
+}
+
+Status DelaunayHelperPool::SolveSparse(const SparseSystem& system,
+                                       std::vector<double>* x,
+                                       const std::atomic<bool>* cancel,
+                                       Clock::time_point deadline,
+                                       int64_t memory_budget_bytes) {
+  const auto n = static_cast<uint64_t>(system.n);
+  const uint64_t nonzeros = system.values.size();
+  if (system.rows.size() != nonzeros || system.cols.size() != nonzeros ||
+      system.b.size() != n * static_cast<uint64_t>(system.rhs)) {
+    return InvalidArgument("malformed sparse system");
+  }
+  auto send = [&](int fd) {
+    return WriteAll(fd, &n, sizeof n) &&
+           WriteAll(fd, &nonzeros, sizeof nonzeros) &&
+           WriteAll(fd, &system.rhs, sizeof system.rhs) &&
+           WriteAll(fd, system.rows.data(), nonzeros * sizeof(int32_t)) &&
+           WriteAll(fd, system.cols.data(), nonzeros * sizeof(int32_t)) &&
+           WriteAll(fd, system.values.data(), nonzeros * sizeof(double)) &&
+           WriteAll(fd, system.b.data(), system.b.size() * sizeof(double));
+  };
+  auto receive = [&](uint64_t count, const ReadFn& read) -> Status {
+    if (count != system.b.size()) {
+      return Internal("the helper answered " + std::to_string(count) +
+                      " values for a solution of " +
+                      std::to_string(system.b.size()));
+    }
+    x->resize(count);
+    return read(x->data(), count * sizeof(double));
+  };
+  return Call(HelperRequest::kSolveSparse, "the sparse solve", sizeof(double),
+              send, receive, cancel, deadline, memory_budget_bytes);
+}
+
+Status DelaunayHelperPool::Call(HelperRequest kind, const std::string& what,
+                                size_t item_bytes, const SendFn& send,
+                                const ReceiveFn& receive,
+                                const std::atomic<bool>* cancel,
+                                Clock::time_point deadline,
+                                int64_t memory_budget_bytes) {
   Helper* h = nullptr;
   {
     std::unique_lock<std::mutex> lock(mu_);
@@ -255,7 +374,8 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
     if (s.ok()) ++starts_;
   }
   if (s.ok()) {
-    s = Exchange(h, points, memory_budget_bytes, out, cancel, deadline);
+    s = Exchange(h, kind, what, item_bytes, send, receive, cancel, deadline,
+                 memory_budget_bytes);
   }
   if (s.code == StatusCode::kResourceExhausted && memory_budget_bytes > 0) {
     s.message += " (the request's memory budget is " +
@@ -269,14 +389,16 @@ Status DelaunayHelperPool::Tetrahedralize(const std::vector<Vec3>& points,
   return s;
 }
 
-Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
-                                    int64_t memory_budget_bytes,
-                                    Tetrahedralization* out,
+Status DelaunayHelperPool::Exchange(Helper* h, HelperRequest kind,
+                                    const std::string& what, size_t item_bytes,
+                                    const SendFn& send,
+                                    const ReceiveFn& receive,
                                     const std::atomic<bool>* cancel,
-                                    Clock::time_point deadline) {
+                                    Clock::time_point deadline,
+                                    int64_t memory_budget_bytes) {
   // The helper stopped answering: say how it ended, as the kernel tells it
   // (we kill it only if it has not ended by itself within ~50 ms).
-  auto died = [&](const std::string& what) {
+  auto died = [&](const std::string& why) {
     int status = 0;
     bool ended = false;
     for (int i = 0; i < 50 && !ended; ++i) {
@@ -285,8 +407,8 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
     }
     if (!ended) {
       Kill(h);
-      return Internal("the Delaunay helper process stopped answering (" + what +
-                      ") and was restarted");
+      return Internal("the helper process stopped answering during " + what +
+                      " (" + why + ") and was restarted");
     }
     std::string how;
     if (WIFEXITED(status)) {
@@ -302,18 +424,17 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
             std::to_string(WTERMSIG(status)) + ", " +
             strsignal(WTERMSIG(status)) + ")";
     }
-    return Internal("the Delaunay helper process " + how);
+    return Internal("the helper process running " + what + " " + how);
   };
-  const uint64_t n = points.size();
+  const auto code_of_kind = static_cast<uint32_t>(kind);
   const auto budget =
       static_cast<uint64_t>(std::max<int64_t>(0, memory_budget_bytes));
-  if (!WriteAll(h->to_child, &budget, sizeof budget) ||
-      !WriteAll(h->to_child, &n, sizeof n) ||
-      !WriteAll(h->to_child, points.data(), n * sizeof(Vec3))) {
-    return died("writing the points failed");
+  if (!WriteAll(h->to_child, &code_of_kind, sizeof code_of_kind) ||
+      !WriteAll(h->to_child, &budget, sizeof budget) || !send(h->to_child)) {
+    return died("writing the request failed");
   }
   // Reads `len` bytes, polling so that a cancel or deadline kills the helper.
-  auto read = [&](void* data, size_t len) -> Status {
+  const ReadFn read = [&](void* data, size_t len) -> Status {
     char* p = static_cast<char*>(data);
     while (len > 0) {
       if (cancel != nullptr && cancel->load()) {
@@ -323,7 +444,7 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
       if (Clock::now() >= deadline) {
         Kill(h);
         return MakeStatus(StatusCode::kDeadlineExceeded,
-                          "deadline exceeded during the Delaunay step");
+                          "deadline exceeded during " + what);
       }
       pollfd pfd{h->from_child, POLLIN, 0};
       const int ready = ::poll(&pfd, 1, 10);
@@ -348,20 +469,15 @@ Status DelaunayHelperPool::Exchange(Helper* h, const std::vector<Vec3>& points,
   if (s.ok()) s = read(message.data(), len);
   if (s.ok()) s = read(&count, sizeof count);
   if (!s.ok()) return s;
-  const uint64_t reply_bytes =
-      count * (sizeof(out->tets[0]) + sizeof(out->neighbors[0]));
+  const uint64_t reply_bytes = count * item_bytes;
   if (budget > 0 && reply_bytes > budget) {
     Kill(h);  // the rest of its reply is not read
-    return MakeStatus(
-        StatusCode::kResourceExhausted,
-        "TetGen's " + std::to_string(count) + " tetrahedra take " +
-            std::to_string(reply_bytes >> 20) + " MiB, over the budget");
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "the answer of " + what + " takes " +
+                          std::to_string(reply_bytes >> 20) +
+                          " MiB, over the budget");
   }
-  out->tets.resize(count);
-  out->neighbors.resize(count);
-  s = read(out->tets.data(), count * sizeof(out->tets[0]));
-  if (s.ok())
-    s = read(out->neighbors.data(), count * sizeof(out->neighbors[0]));
+  s = receive(count, read);
   if (!s.ok()) return s;
   if (code != 0) return MakeStatus(static_cast<StatusCode>(code), message);
   return OkStatus();

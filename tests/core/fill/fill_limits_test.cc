@@ -15,15 +15,7 @@
 namespace dot {
 namespace {
 
-using testing::FlatGrid;
-using testing::WithoutFaces;
-
-MeshData GridWithSquareHole(int n, int lo, int hi) {
-  return WithoutFaces(FlatGrid(n), [&](int32_t f) {
-    const int quad = f / 2, i = quad / n, j = quad % n;
-    return i >= lo && i < hi && j >= lo && j < hi;
-  });
-}
+using testing::GridWithSquareHole;
 
 MeshData HoleyTorus(int nu, int nv, int holes) {
   return testing::HoleyTorus(nu, nv, holes, 60);

@@ -11,16 +11,8 @@
 namespace dot {
 namespace {
 
-using testing::FlatGrid;
-using testing::WithoutFaces;
-
-MeshData GridWithSquareHole(int n, int lo, int hi) {
-  const MeshData grid = FlatGrid(n);
-  return WithoutFaces(grid, [&](int32_t f) {
-    const int quad = f / 2, i = quad / n, j = quad % n;
-    return i >= lo && i < hi && j >= lo && j < hi;
-  });
-}
+using testing::GridWithSquareHole;
+using testing::SphereWithCapCut;
 
 const HoleReport& Filled(const FillResult& r) {
   for (const HoleReport& h : r.report.holes) {
@@ -82,44 +74,9 @@ TEST(RefineFairTest, FairingKeepsAPlaneFlat) {
   }
 }
 
-// A UV sphere of radius 1 with the cap x > 0.85 cut out.
-MeshData SphereWithCapCut() {
-  MeshData sphere;
-  const int rings = 40, segments = 80;
-  sphere.vertices.push_back({0, 0, 1});
-  for (int i = 1; i < rings; ++i) {
-    const double theta = kPi * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double phi = 2 * kPi * j / segments;
-      sphere.vertices.push_back({std::sin(theta) * std::cos(phi),
-                                 std::sin(theta) * std::sin(phi),
-                                 std::cos(theta)});
-    }
-  }
-  sphere.vertices.push_back({0, 0, -1});
-  const int south = static_cast<int>(sphere.vertices.size()) - 1;
-  auto id = [&](int i, int j) { return 1 + (i - 1) * segments + j % segments; };
-  for (int j = 0; j < segments; ++j) {
-    sphere.triangles.push_back({0, id(1, j), id(1, j + 1)});
-    sphere.triangles.push_back({south, id(rings - 1, j + 1), id(rings - 1, j)});
-  }
-  for (int i = 1; i + 1 < rings; ++i) {
-    for (int j = 0; j < segments; ++j) {
-      sphere.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      sphere.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
-  return WithoutFaces(sphere, [&](int32_t f) {
-    const Triangle& t = sphere.triangles[f];
-    const Vec3 c = (1.0 / 3) * (sphere.vertices[t[0]] + sphere.vertices[t[1]] +
-                                sphere.vertices[t[2]]);
-    return c.x > 0.85;
-  });
-}
-
 // The faired patch follows the sphere; the flat DOT patch does not.
 TEST(RefineFairTest, FairingFollowsASphere) {
-  const MeshData m = SphereWithCapCut();
+  const MeshData m = SphereWithCapCut(40, 80, 0.85);
   auto worst = [&](const FillResult& r) {
     double d = 0;
     for (size_t v = m.vertices.size(); v < r.mesh.vertices.size(); ++v) {
@@ -151,7 +108,7 @@ TEST(RefineFairTest, FairingFollowsASphere) {
 // pierce it, so fairing is undone and the refined patch, which stays below
 // the square, is kept (and said so).
 TEST(RefineFairTest, FairingThatWouldIntersectIsUndone) {
-  MeshData m = SphereWithCapCut();
+  MeshData m = SphereWithCapCut(40, 80, 0.85);
   const auto s = static_cast<int32_t>(m.vertices.size());
   for (const Vec3& p : {Vec3{0.96, -0.2, -0.2}, Vec3{0.96, 0.2, -0.2},
                         Vec3{0.96, 0.2, 0.2}, Vec3{0.96, -0.2, 0.2}}) {
@@ -174,7 +131,7 @@ TEST(RefineFairTest, FairingThatWouldIntersectIsUndone) {
   EXPECT_GT(h.refined_vertices, 0);
   EXPECT_NE(h.reason.find("fairing undone"), std::string::npos) << h.reason;
   // Without the square the same hole is faired.
-  const FillResult alone = FillHoles(SphereWithCapCut());
+  const FillResult alone = FillHoles(SphereWithCapCut(40, 80, 0.85));
   EXPECT_TRUE(alone.report.holes[0].faired);
 }
 

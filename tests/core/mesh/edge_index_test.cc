@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <map>
 #include <random>
 #include <tuple>
@@ -124,6 +126,46 @@ TEST(EdgeIndexTest, EmptyInput) {
   ForEachEdge(index, [&](const EdgeUses&) { ++calls; });
   EXPECT_EQ(calls, 0);
   EXPECT_FALSE(HasEdge(index, 0, 1));
+}
+
+// Whole meshes: the index stops with its ticker (before, building it took
+// ~0.6 s on 10 M faces with no way to stop), and an unbounded ticker gives
+// the plain index.
+TEST(EdgeIndexTest, StopsWhenItsTickerSaysSoAndMatchesThePlainIndexOtherwise) {
+  const MeshData torus = testing::BumpyTorus(200, 100);
+  std::atomic<bool> cancel{true};
+  Control cancelled;
+  cancelled.cancel = &cancel;
+  RunTicker stop(cancelled, "indexing");
+  EdgeIndex index;
+  EXPECT_FALSE(BuildEdgeIndex(torus.triangles, stop, &index));
+  EXPECT_EQ(stop.status().code, StatusCode::kCancelled);
+
+  Control expired;
+  expired.deadline = std::chrono::steady_clock::now();
+  RunTicker late(expired, "indexing");
+  EXPECT_FALSE(BuildEdgeIndex(torus.triangles, late, &index));
+  EXPECT_EQ(late.status().code, StatusCode::kDeadlineExceeded);
+  EXPECT_NE(late.status().message.find("indexing"), std::string::npos);
+
+  const Control unbounded;
+  RunTicker go(unbounded, "indexing");
+  ASSERT_TRUE(BuildEdgeIndex(torus.triangles, go, &index));
+  const EdgeIndex plain = BuildEdgeIndex(torus.triangles);
+  ASSERT_EQ(index.uses.size(), plain.uses.size());
+  for (size_t k = 0; k < plain.uses.size(); ++k) {
+    EXPECT_EQ(index.uses[k].key, plain.uses[k].key);
+    EXPECT_EQ(index.uses[k].triangle, plain.uses[k].triangle);
+    EXPECT_EQ(index.uses[k].side, plain.uses[k].side);
+  }
+}
+
+TEST(EdgeIndexTest, ForEachEdgeStopsWhenItsFunctionReturnsFalse) {
+  const MeshData torus = testing::BumpyTorus(10, 5);
+  int seen = 0;
+  ForEachEdge(BuildEdgeIndex(torus.triangles),
+              [&](const EdgeUses&) { return ++seen < 7; });
+  EXPECT_EQ(seen, 7);
 }
 
 }  // namespace
