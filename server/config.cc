@@ -151,8 +151,8 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
          "DOT_FILL_MAX_VERTICES",
          "largest mesh FillHoles accepts, in vertices");
   AddInt(app, "--delaunay-helpers", &c->helpers.count, "DOT_DELAUNAY_HELPERS",
-         "TetGen helper processes (-1: one per thread, 0: in-process, "
-         "serialized)",
+         "helper processes for TetGen and large fairing solves (-1: one per "
+         "thread; 0: none, TetGen refused, fairing in-process)",
          -1);
   Add(app, "--helper-path", &c->helpers.executable, "DOT_HELPER_PATH",
       "dot-delaunay-helper binary (default: next to dot-server)");
@@ -212,6 +212,10 @@ std::string FinalizeConfig(ServerConfig* c) {
     }
   }
   if (h.count < 0) h.count = c->pool.threads;
+  if (h.count == 0 && c->service.solve.delaunay == DelaunayBackend::kTetgen) {
+    return "--delaunay-backend tetgen needs helper processes: TetGen aborts "
+           "on some inputs and runs only in them (--delaunay-helpers is 0)";
+  }
   if (h.executable.empty() && h.count > 0) {
     std::error_code ec;
     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);

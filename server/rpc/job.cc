@@ -220,8 +220,15 @@ Control JobRunner::ControlFor(Job& job) {
     };
   }
   // Every path to TetGen goes through the helper processes: a TetGen
-  // assertion then fails one request, not the server.
-  if (helpers_ != nullptr) {
+  // assertion then fails one request, not the server. Without helpers
+  // (--delaunay-helpers 0) TetGen is refused, never run in process.
+  if (helpers_ == nullptr) {
+    control.tetrahedralize = [](const std::vector<Vec3>&, Tetrahedralization*) {
+      return InvalidArgument(
+          "the tetgen Delaunay backend is off on this server (it runs only "
+          "in helper processes, and --delaunay-helpers is 0): use cgal");
+    };
+  } else {
     control.tetrahedralize = [this, &job](const std::vector<Vec3>& points,
                                           Tetrahedralization* out) {
       const Status s =

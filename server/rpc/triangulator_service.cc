@@ -57,10 +57,10 @@ grpc::ServerUnaryReactor* TriangulatorService::GetServerInfo(
   info->set_build(DOT_BUILD_INFO);
   info->add_backends("cgal-5.5 Delaunay 3D" + def(DelaunayBackend::kCgal));
   if (TetgenAvailable()) {
-    info->add_backends(std::string(helpers_ ? "tetgen-1.5 (helper processes)"
-                                            : "tetgen-1.5 (in-process, "
-                                              "serialized)") +
-                       def(DelaunayBackend::kTetgen));
+    info->add_backends(helpers_ ? "tetgen-1.5 (helper processes)" +
+                                      def(DelaunayBackend::kTetgen)
+                                : std::string("tetgen-1.5: off on this server "
+                                              "(--delaunay-helpers 0)"));
   } else {
     info->add_backends("tetgen: not in this build (DOT_WITH_TETGEN=OFF)");
   }

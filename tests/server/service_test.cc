@@ -496,6 +496,38 @@ TEST(ServiceTest, DrainCancelsWorkThatOutlivesTheGracePeriod) {
       << status.error_message();
 }
 
+TEST(ServiceTest, WithoutHelpersTetgenIsRefusedNotRunInProcess) {
+  // Before: --delaunay-helpers 0 ran TetGen in the server's process, and a
+  // client asking for it on this polygon aborted the server.
+  if (!TetgenAvailable()) GTEST_SKIP() << "built without TetGen";
+  auto config = testing::LoopbackConfig();
+  config.helpers.count = 0;
+  auto s = StartServer(config);
+  ASSERT_EQ(s.server->helpers(), nullptr);
+  PolygonData rim;
+  ASSERT_TRUE(
+      ReadPolygonFile(DOT_TEST_DATA_DIR "/tetgen_aborts.xyz", &rim).ok());
+  v1::Options options;
+  options.set_delaunay_backend(v1::DELAUNAY_BACKEND_TETGEN);
+  options.set_search_space(v1::SEARCH_SPACE_DELAUNAY);
+  const auto request =
+      wire::MakeRequest("rim", rim, Weights(Metric::kArea), options);
+  const grpc::Status st =
+      TriangulateRemote(*s.stub, request, Input(request), 30).status;
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("--delaunay-helpers is 0"),
+            std::string::npos)
+      << st.error_message();
+  const auto after = CurveRequest(Curve::kMonkey, 200, Weights(Metric::kArea));
+  ExpectSameAsLocal(after, TriangulateRemote(*s.stub, after, Input(after), 30));
+
+  // A server whose default is TetGen needs its helpers.
+  config.service.solve.delaunay = DelaunayBackend::kTetgen;
+  std::string error;
+  EXPECT_EQ(server::DotServer::Start(config, &error), nullptr);
+  EXPECT_NE(error.find("needs helper processes"), std::string::npos) << error;
+}
+
 TEST(ServiceTest, HelperCrashCostsOnlyThatRequest) {
   if (!TetgenAvailable()) GTEST_SKIP() << "built without TetGen";
   auto config = testing::LoopbackConfig();

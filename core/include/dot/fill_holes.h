@@ -186,9 +186,11 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
                           HoleReport* report);
 
 // Intersecting pairs of patch faces with each other and with the mesh faces
-// near the patch (exact predicates).
-int64_t PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
-                           int32_t first_new_id, const HolePatch& patch);
+// near the patch (exact predicates), into `pairs`; stops when `control`
+// says so.
+Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control, int64_t* pairs);
 
 // Control's cancel and deadline are honoured in every stage; its progress
 // callback is not used (holes run at once): `on_hole`, when given, is called

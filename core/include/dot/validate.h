@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "dot/geometry.h"
+#include "dot/status.h"
+#include "dot/triangulate.h"
 
 namespace dot {
 
@@ -39,6 +41,13 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
 int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
                                const std::vector<Triangle>& triangles,
                                size_t checked = SIZE_MAX);
+// The same, polling `control` as it goes (a patch of 40,000 faces takes
+// about a second): kCancelled or kDeadlineExceeded, with `pairs` unset, when
+// it says stop.
+Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
+                              const std::vector<Triangle>& triangles,
+                              size_t checked, const Control& control,
+                              int64_t* pairs);
 
 }  // namespace dot
 

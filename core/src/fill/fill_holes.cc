@@ -163,10 +163,20 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     return;
   }
   t0 = Clock::now();
-  r.intersecting_pairs = PatchIntersections(mesh, topo, first_new, w->patch);
+  s = PatchIntersections(mesh, topo, first_new, w->patch, control,
+                         &r.intersecting_pairs);
+  if (!s.ok()) {
+    w->status = s;
+    return;
+  }
   if (r.intersecting_pairs > 0 && options.stage != FillStage::kTriangulate) {
     // Refinement can fold a patch; the DOT patch may still be clean.
-    const int64_t plain = PatchIntersections(mesh, topo, first_new, dot_patch);
+    int64_t plain = 0;
+    s = PatchIntersections(mesh, topo, first_new, dot_patch, control, &plain);
+    if (!s.ok()) {
+      w->status = s;
+      return;
+    }
     if (plain == 0) {
       r.reason = "refined patch intersected the mesh (" +
                  std::to_string(r.intersecting_pairs) +
@@ -199,13 +209,17 @@ struct Merged {
 
 // Appends the hole's new vertices and faces; split faces are replaced in
 // place by their first piece (so unsplit faces keep their index), the other
-// pieces appended. Refused, with the reason, when the hole would split a
-// face another hole split, reuse an edge of another hole's patch (two
-// loops through the same vertices) or intersect another hole's patch.
-std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
-                  FillResult* out) {
+// pieces appended. Refused, with the reason in `refused`, when the hole
+// would split a face another hole split, reuse an edge of another hole's
+// patch (two loops through the same vertices) or intersect another hole's
+// patch. Not OK only when `control` stops the check.
+Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
+             Merged* merged, FillResult* out, std::string* refused) {
   for (int32_t f : w.patch.split_faces) {
-    if (merged->split[f]) return "a face it splits was split by another hole";
+    if (merged->split[f]) {
+      *refused = "a face it splits was split by another hole";
+      return OkStatus();
+    }
   }
   const auto first_new = static_cast<int32_t>(input.vertices.size());
   const auto offset =
@@ -222,8 +236,9 @@ std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
   for (const Triangle& t : fresh) {
     for (int k = 0; k < 3; ++k) {
       if (merged->edges.count(UndirectedEdgeKey(t[k], t[(k + 1) % 3]))) {
-        return "its patch would share edge " + std::to_string(t[k]) + "-" +
-               std::to_string(t[(k + 1) % 3]) + " with another hole's";
+        *refused = "its patch would share edge " + std::to_string(t[k]) + "-" +
+                   std::to_string(t[(k + 1) % 3]) + " with another hole's";
+        return OkStatus();
       }
     }
   }
@@ -245,13 +260,19 @@ std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
       if (b.Meets(box)) check.push_back(t);
     }
     // Pairs within the hole were checked already: count only the others.
-    const int64_t pairs = CountPairsAmong(point, check, fresh.size()) -
-                          CountPairsAmong(point, fresh, fresh.size());
+    int64_t with_others = 0, within = 0;
+    Status s =
+        CountPairsAmong(point, check, fresh.size(), control, &with_others);
+    if (s.ok())
+      s = CountPairsAmong(point, fresh, fresh.size(), control, &within);
+    if (!s.ok()) return s;
+    const int64_t pairs = with_others - within;
     if (pairs > 0) {
       out->mesh.vertices.resize(out->mesh.vertices.size() -
                                 w.patch.new_vertices.size());
-      return "its patch intersects another hole's (" + std::to_string(pairs) +
-             " pairs of faces)";
+      *refused = "its patch intersects another hole's (" +
+                 std::to_string(pairs) + " pairs of faces)";
+      return OkStatus();
     }
   }
   for (size_t k = 0; k < w.patch.split_faces.size(); ++k) {
@@ -272,7 +293,7 @@ std::string Merge(const MeshData& input, const HoleWork& w, Merged* merged,
     }
     merged->faces.push_back(t);
   }
-  return "";
+  return OkStatus();
 }
 
 // Whether every edge has two faces; false also when `ticker` stops the run.
@@ -374,7 +395,13 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
     }
     HoleReport& r = w.report;
     if (r.status == HoleStatus::kFilled) {
-      const std::string refused = Merge(mesh, w, &merged, &out);
+      std::string refused;
+      const Status s = Merge(mesh, w, control, &merged, &out, &refused);
+      if (!s.ok()) {
+        out = {};
+        out.status = s;
+        return out;
+      }
       if (!refused.empty()) {
         r.status = HoleStatus::kFailed;
         r.reason = refused + ": left open (fill it alone with --holes)";

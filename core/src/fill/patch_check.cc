@@ -11,6 +11,7 @@
 #include "dot/fill_holes.h"
 #include "dot/validate.h"
 #include "fill/mesh_topology.h"
+#include "util/run_control.h"
 
 namespace dot {
 
@@ -24,8 +25,9 @@ bool Box3::Meets(const Box3& o) const {
          lo.z <= o.hi.z && o.lo.z <= hi.z;
 }
 
-int64_t CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
-                        std::vector<Triangle> faces, size_t checked) {
+Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
+                       std::vector<Triangle> faces, size_t checked,
+                       const Control& control, int64_t* pairs) {
   std::unordered_map<int32_t, int32_t> local;
   std::vector<Vec3> points;
   for (Triangle& t : faces) {
@@ -35,11 +37,13 @@ int64_t CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
       v = it->second;
     }
   }
-  return CountIntersectingPairs(points, faces, checked);
+  return CountIntersectingPairs(points, faces, checked, control, pairs);
 }
 
-int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
-                           int32_t first_new_id, const HolePatch& patch) {
+Status PatchIntersections(const MeshData& mesh, const MeshTopology&,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control, int64_t* pairs) {
+  RunTicker ticker(control, "the intersection check");
   auto point = [&](int32_t id) -> const Vec3& {
     return id < first_new_id ? mesh.vertices[id]
                              : patch.new_vertices[id - first_new_id];
@@ -55,6 +59,7 @@ int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
   const std::unordered_set<int32_t> split(patch.split_faces.begin(),
                                           patch.split_faces.end());
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (!ticker.Tick()) return ticker.status();
     const Triangle& t = mesh.triangles[f];
     Box3 b;
     for (int32_t v : t) b.Add(mesh.vertices[v]);
@@ -62,7 +67,8 @@ int64_t PatchIntersections(const MeshData& mesh, const MeshTopology&,
       faces.push_back(t);
     }
   }
-  return CountPairsAmong(point, std::move(faces), patch.faces.size());
+  return CountPairsAmong(point, std::move(faces), patch.faces.size(), control,
+                         pairs);
 }
 
 }  // namespace dot

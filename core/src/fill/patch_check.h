@@ -9,14 +9,18 @@
 #include <vector>
 
 #include "dot/geometry.h"
+#include "dot/status.h"
+#include "dot/triangulate.h"
 
 namespace dot {
 
 // Pairs of `faces` that intersect (exact predicates, as the validator)
 // with at least one of the pair among the first `checked`; `point` gives a
 // vertex id's position. Faces are taken by value: they are renumbered.
-int64_t CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
-                        std::vector<Triangle> faces, size_t checked);
+// Stops when `control` says so (kCancelled, kDeadlineExceeded).
+Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
+                       std::vector<Triangle> faces, size_t checked,
+                       const Control& control, int64_t* pairs);
 
 // Axis-aligned box of some points.
 struct Box3 {

@@ -268,8 +268,10 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
       HolePatch faired = unrefined;
       ExtractPatch(sm, is_context, nb.global, first_new_id, unscale, &faired);
       if (!ticker.Poll()) return ticker.status();
-      const int64_t pairs =
-          PatchIntersections(mesh, topology, first_new_id, faired);
+      int64_t pairs = 0;
+      const Status s = PatchIntersections(mesh, topology, first_new_id, faired,
+                                          control, &pairs);
+      if (!s.ok()) return s;
       if (pairs == 0) {
         *patch = std::move(faired);
       } else {

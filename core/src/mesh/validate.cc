@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "mesh/edge_index.h"
+#include "util/run_control.h"
 
 namespace dot {
 namespace {
@@ -209,26 +210,45 @@ void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
 int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
                                const std::vector<Triangle>& triangles,
                                size_t checked) {
+  int64_t pairs = 0;
+  CountIntersectingPairs(vertices, triangles, checked, Control{}, &pairs);
+  return pairs;
+}
+
+Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
+                              const std::vector<Triangle>& triangles,
+                              size_t checked, const Control& control,
+                              int64_t* pairs) {
+  RunTicker ticker(control, "the intersection check");
   std::vector<P3> p;
   p.reserve(vertices.size());
   for (const Vec3& v : vertices) p.push_back(ToPoint(v));
   std::vector<Box> boxes;
   boxes.reserve(triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
+    if (!ticker.Tick()) return ticker.status();
     const Triangle& t = triangles[i];
     boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(),
                        static_cast<int32_t>(i));
   }
+  // CGAL's box intersection has no way to stop but an exception.
+  struct Stop {};
   int64_t count = 0;
-  CGAL::box_self_intersection_d(
-      boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-        if (static_cast<size_t>(x.info()) >= checked &&
-            static_cast<size_t>(y.info()) >= checked) {
-          return;
-        }
-        if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
-      });
-  return count;
+  try {
+    CGAL::box_self_intersection_d(
+        boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+          if (!ticker.Tick()) throw Stop{};
+          if (static_cast<size_t>(x.info()) >= checked &&
+              static_cast<size_t>(y.info()) >= checked) {
+            return;
+          }
+          if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
+        });
+  } catch (const Stop&) {
+    return ticker.status();
+  }
+  *pairs = count;
+  return OkStatus();
 }
 
 MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
