@@ -365,9 +365,19 @@ void FillHolesReactor::OnDone() {
     timer_guard_->reactor = nullptr;  // a timer firing now finds nobody
   }
   if (!job_) {
+    // The call ended before its first message was accepted: it is still
+    // logged, and a stop counted by its reason.
     grpc::Status ignored;
     job_ =
         runner_->AdmitTask("FillHoles", "", 0, context_->deadline(), &ignored);
+    if (context_->IsCancelled()) {
+      job_->StopForCancel(context_->deadline());
+      final_status_ = StoppedStatus(job_->stop);
+    } else if (final_status_.error_code() ==
+               grpc::StatusCode::DEADLINE_EXCEEDED) {
+      job_->Stop(job_->deadline_is_limit ? StopReason::kServerBudget
+                                         : StopReason::kClientDeadline);
+    }
   }
   if (final_status_.ok() && context_->IsCancelled()) {
     if (job_->stop == StopReason::kNone) job_->Stop(StopReason::kClientGone);

@@ -10,16 +10,20 @@ Raw bytes to a real dot-server on loopback, each case a defect once seen:
   as it liked (the deadline was checked only when a message arrived); the
   upload must end by a timer with DEADLINE_EXCEEDED;
 - on SIGTERM the drain waited its whole period for such an idle uploader;
-  the upload must end at once with UNAVAILABLE and the server exit.
+  the upload must end at once with UNAVAILABLE and the server exit;
+- a client whose deadline passed before its first message was logged as
+  cancelled and not counted; it must count as client_deadline.
 
 Usage: fill_raw_messages_test.py PATH/TO/dot-server
 """
+import re
 import signal
 import struct
 import subprocess
 import sys
 import threading
 import time
+import urllib.request
 
 import grpc
 
@@ -36,11 +40,11 @@ def first_message(request_id, time_budget_ms=0):
             field(3, 2, coordinates) + field(4, 2, faces))
 
 
-def start(server_path, *flags):
+def start(server_path, *flags, metrics_port=0):
     port = free_port()
     server = subprocess.Popen([server_path, "--listen", f"127.0.0.1:{port}",
-                               "--metrics-port", "0", "--log-level", "warn",
-                               *flags])
+                               "--metrics-port", str(metrics_port),
+                               "--log-level", "warn", *flags])
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
     grpc.channel_ready_future(channel).result(timeout=20)
     call = channel.stream_stream("/dot.v1.Triangulator/FillHoles",
@@ -65,8 +69,19 @@ def expect_error(call, requests, code, words):
     raise AssertionError(f"expected {code}, got {len(responses)} responses")
 
 
+def stopped_count(metrics_port, reason):
+    text = urllib.request.urlopen(
+        f"http://127.0.0.1:{metrics_port}/metrics", timeout=10).read().decode()
+    for line in text.splitlines():
+        if (line.startswith("dot_requests_stopped_total{") and
+                'rpc="FillHoles"' in line and f'reason="{reason}"' in line):
+            return float(line.split()[-1])
+    return 0.0
+
+
 def main():
-    server, call = start(sys.argv[1])
+    metrics_port = free_port()
+    server, call = start(sys.argv[1], metrics_port=metrics_port)
     release = threading.Event()
     try:
         # A message that does not parse, after a good first one.
@@ -80,6 +95,16 @@ def main():
                      "did not arrive within the time limit")
         print(f"idle upload with a 1.5 s budget ended after "
               f"{time.monotonic() - t0:.2f} s (client deadline 60 s)")
+        # A client whose deadline passes before it sends anything.
+        before = stopped_count(metrics_port, "client_deadline")
+        try:
+            list(call(stalled([], release), timeout=1))
+            raise AssertionError("an empty upload was answered")
+        except grpc.RpcError as e:
+            assert e.code() == grpc.StatusCode.DEADLINE_EXCEEDED, e.code()
+        time.sleep(0.5)  # the server's side of the call ends
+        after = stopped_count(metrics_port, "client_deadline")
+        assert after == before + 1, (before, after)
         # The server is still up and right.
         done = list(call(iter([first_message("after")]), timeout=60))
         assert done, "no answer after the bad uploads"
