@@ -10,24 +10,36 @@
 
 #include "dot/fill_holes.h"
 #include "fill/mesh_topology.h"
+#include "polygon/unit_scale.h"
 
 namespace dot {
 namespace {
 
+// The hole as a Problem in work coordinates: the mesh's scaled by the
+// power of two that brings the rim to unit size (exact, see
+// polygon/unit_scale.h), so that normals, edge lengths and per-edge weights
+// neither overflow nor underflow at any finite scale (before: a mesh at
+// 1e160 had zero normals, one at 1e-160 an infinite area weight).
 Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
-                    const HoleLoop& loop, const FillOptions& options) {
+                    const HoleLoop& loop, const FillOptions& options,
+                    UnitScale* scale) {
   Problem p;
   const int32_t n = static_cast<int32_t>(loop.vertices.size());
+  for (int32_t v : loop.vertices) p.vertices.push_back(mesh.vertices[v]);
+  *scale = ChooseUnitScale(p.vertices);
+  for (Vec3& v : p.vertices) v = scale->ToWork(v);
+  auto work = [&](int32_t v) { return scale->ToWork(mesh.vertices[v]); };
+  auto cross = [&](const Triangle& t) {
+    const Vec3 a = work(t[0]);
+    return Cross(work(t[1]) - a, work(t[2]) - a);
+  };
   std::unordered_map<int32_t, int32_t> position;
   double perimeter = 0;
   for (int32_t i = 0; i < n; ++i) {
-    const int32_t v = loop.vertices[i];
-    position[v] = i;
-    p.vertices.push_back(mesh.vertices[v]);
-    perimeter +=
-        Distance(mesh.vertices[v], mesh.vertices[loop.vertices[(i + 1) % n]]);
+    position[loop.vertices[i]] = i;
+    perimeter += Distance(p.vertices[i], p.vertices[(i + 1) % n]);
     p.edge_face_normals.push_back(
-        UnitNormal(mesh.vertices, mesh.triangles[loop.faces[i]]));
+        Normalized(cross(mesh.triangles[loop.faces[i]])));
   }
   // Area-weighted vertex normals: the sum of the incident faces' cross
   // products.
@@ -35,10 +47,7 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
     const int32_t v = loop.vertices[i];
     Vec3 sum;
     for (int32_t k = topo.face_begin[v]; k < topo.face_begin[v + 1]; ++k) {
-      const Triangle& t = mesh.triangles[topo.faces[k]];
-      const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]],
-                 &c = mesh.vertices[t[2]];
-      sum = sum + Cross(b - a, c - a);
+      sum = sum + cross(mesh.triangles[topo.faces[k]]);
     }
     if (Norm(sum) == 0) sum = p.edge_face_normals[i];
     if (Norm(sum) == 0) sum = {0, 0, 1};
@@ -60,6 +69,12 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
     const double edge = perimeter / n;
     p.weights[Metric::kArea] /= edge * edge;
     p.weights[Metric::kPerimeter] /= edge;
+  } else {
+    // Weights in the mesh's units: the same objective on work coordinates.
+    for (Metric m : kAllMetrics) {
+      p.weights[m] =
+          std::ldexp(p.weights[m], -LengthDegree(m) * scale->exponent);
+    }
   }
   return p;
 }
@@ -151,7 +166,8 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
                        const Control& control, int32_t first_new_id,
                        HolePatch* patch, HoleReport* report) {
   *patch = {};
-  const Problem problem = HoleProblem(mesh, topology, loop, options);
+  UnitScale scale;
+  const Problem problem = HoleProblem(mesh, topology, loop, options, &scale);
   const int32_t n = static_cast<int32_t>(loop.vertices.size());
   std::vector<Attempt> attempts = {
       {Escalation::kDelaunay, SearchSpace::kDelaunay, false},
@@ -194,7 +210,7 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
     return id < n ? loop.vertices[id] : first_new_id + (id - n);
   };
   for (int32_t id = n; id < static_cast<int32_t>(r.vertices.size()); ++id) {
-    patch->new_vertices.push_back(r.vertices[id]);
+    patch->new_vertices.push_back(scale.ToCaller(r.vertices[id]));
   }
   for (const Triangle& t : r.triangles) {
     patch->faces.push_back({global(t[0]), global(t[1]), global(t[2])});

@@ -5,10 +5,7 @@
 #include <climits>
 
 namespace dot {
-namespace {
 
-// Powers of the length scale in each metric: area 2, perimeter 1, the
-// angles and the shape measure 0.
 int LengthDegree(Metric m) {
   switch (m) {
     case Metric::kArea:
@@ -19,8 +16,6 @@ int LengthDegree(Metric m) {
       return 0;
   }
 }
-
-}  // namespace
 
 UnitScale ChooseUnitScale(const std::vector<Vec3>& vertices) {
   double largest = 0;

@@ -30,6 +30,10 @@ struct UnitScale {
   }
 };
 
+// Power of the length scale in metric m: area 2, perimeter 1, the angles
+// and the shape measure 0.
+int LengthDegree(Metric m);
+
 // The scale of `vertices` (finite, not all zero).
 UnitScale ChooseUnitScale(const std::vector<Vec3>& vertices);
 

@@ -42,10 +42,12 @@ TEST(FillLimitsTest, HighDensityStopsAtTheCapAndKeepsTheDotPatch) {
   EXPECT_LE(r.report.added_faces, 2 * (2 * 16 * 16 + 1000));
 }
 
-TEST(FillLimitsTest, TinyCoordinatesAreFairedWithoutNaN) {
+TEST(FillLimitsTest, AnyFiniteScaleIsFilledAndFairedWithoutNaN) {
   // Before: fairing at coordinates around 1e-150 made NaN vertices, and the
-  // hole was reported filled.
-  for (double scale : {1e-150, 1e-300, 1e150}) {
+  // hole was reported filled; at 1e160 and beyond every hole failed on a
+  // zero boundary normal, at 1e-160 on an infinite area weight.
+  for (double scale :
+       {1e-300, 1e-160, 1e-150, 1e-100, 1.0, 1e100, 1e150, 1e160, 1e300}) {
     MeshData m = HoleyTorus(40, 20, 2);
     for (Vec3& p : m.vertices) p = scale * p;
     const FillResult r = FillHoles(m);
@@ -53,7 +55,8 @@ TEST(FillLimitsTest, TinyCoordinatesAreFairedWithoutNaN) {
     for (const Vec3& p : r.mesh.vertices) {
       ASSERT_TRUE(IsFinite(p)) << "scale " << scale;
     }
-    EXPECT_EQ(r.report.filled, 2) << scale;
+    EXPECT_EQ(r.report.filled, 2) << scale << ": "
+                                  << r.report.holes[0].reason;
     int faired = 0;
     for (const HoleReport& h : r.report.holes) faired += h.faired;
     EXPECT_GT(faired, 0) << "scale " << scale;
