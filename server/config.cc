@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "config.h"
 
+#include <arpa/inet.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -161,7 +162,7 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   AddInt(app, "--metrics-port", &c->metrics.port, "DOT_METRICS_PORT",
          "Prometheus /metrics HTTP port (0: off)", 0, 65535);
   Add(app, "--metrics-bind", &c->metrics.bind, "DOT_METRICS_BIND",
-      "address the metrics endpoint binds");
+      "IPv4 or IPv6 address the metrics endpoint binds");
   Add(app, "--tls-cert", &c->tls.cert, "DOT_TLS_CERT",
       "PEM server certificate (enables TLS)");
   Add(app, "--tls-key", &c->tls.key, "DOT_TLS_KEY", "PEM server private key");
@@ -209,6 +210,23 @@ std::string FinalizeConfig(ServerConfig* c) {
     if (c->service.solve.delaunay == DelaunayBackend::kTetgen) {
       return "--delaunay-backend tetgen: this build has no TetGen "
              "(DOT_WITH_TETGEN=OFF)";
+    }
+  }
+  if (c->metrics.port > 0) {
+    in6_addr address{};
+    const bool ipv4 =
+        ::inet_pton(AF_INET, c->metrics.bind.c_str(), &address) == 1;
+    const bool ipv6 =
+        ::inet_pton(AF_INET6, c->metrics.bind.c_str(), &address) == 1;
+    if (!ipv4 && !ipv6) {
+      // Before: civetweb took 999.1.1.1 and listened on 231.1.1.1.
+      return "--metrics-bind '" + c->metrics.bind +
+             "' is not an IPv4 or IPv6 address (e.g. 127.0.0.1 or 0.0.0.0)";
+    }
+    if (ipv6 && !MetricsSupportIpv6()) {
+      return "--metrics-bind " + c->metrics.bind +
+             ": this build's HTTP server (civetweb) has no IPv6; use an IPv4 "
+             "address such as 127.0.0.1 or 0.0.0.0";
     }
   }
   if (h.count < 0) h.count = c->pool.threads;

@@ -108,17 +108,22 @@ ServerMetrics::ServerMetrics(const MetricsOptions& options)
     // scrapers cannot hold the endpoint (the gRPC port is separate).
     CivetCallbacks callbacks{};
     callbacks.begin_request = AnswerAllButGetMetrics;
+    // civetweb writes an IPv6 address in brackets.
+    const std::string host = options.bind.find(':') == std::string::npos
+                                 ? options.bind
+                                 : "[" + options.bind + "]";
     exposer_ = std::make_unique<prometheus::Exposer>(
         std::vector<std::string>{
-            "listening_ports",
-            options.bind + ":" + std::to_string(options.port), "num_threads",
-            std::to_string(options.threads), "request_timeout_ms",
-            std::to_string(options.request_timeout_ms), "enable_keep_alive",
-            "no"},
+            "listening_ports", host + ":" + std::to_string(options.port),
+            "num_threads", std::to_string(options.threads),
+            "request_timeout_ms", std::to_string(options.request_timeout_ms),
+            "enable_keep_alive", "no"},
         &callbacks);
     exposer_->RegisterCollectable(registry_);
   }
 }
+
+bool MetricsSupportIpv6() { return mg_check_feature(8) != 0; }
 
 void ServerMetrics::RequestDone(const std::string& rpc,
                                 const std::string& status, double seconds) {

@@ -23,9 +23,16 @@ struct MetricsOptions {
   // Address it listens on: loopback unless opened on purpose (the compose
   // and Kubernetes manifests set DOT_METRICS_BIND=0.0.0.0).
   std::string bind = "127.0.0.1";
-  int threads = 4;                // HTTP threads, apart from gRPC's
-  int request_timeout_ms = 2000;  // a silent scraper is dropped after this
+  // HTTP threads, apart from gRPC's, each held by one connection until it
+  // sends its request or `request_timeout_ms` passes: N silent connections
+  // delay a scrape by about N / threads x the timeout.
+  int threads = 16;
+  int request_timeout_ms = 1000;
 };
+
+// Whether the metrics endpoint can bind an IPv6 address (Debian's civetweb
+// is built without IPv6).
+bool MetricsSupportIpv6();
 
 class ServerMetrics {
  public:

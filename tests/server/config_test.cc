@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // dot-server's flags land in their option structs, in the units they say.
+#include "config.h"
+
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
-
-#include "config.h"
 
 namespace dot::server {
 namespace {
@@ -19,6 +19,38 @@ TEST(ConfigTest, SizeFlagsConvertTheirUnits) {
   EXPECT_EQ(c.service.chunk_bytes, size_t{16} << 10);
   EXPECT_EQ(c.service.fill_max_faces, 1234);
   EXPECT_EQ(c.cache_bytes, int64_t{3} << 20);
+}
+
+// The error for --metrics-bind `bind` (empty: accepted).
+std::string MetricsBindError(const std::string& bind) {
+  CLI::App app;
+  ServerConfig c;
+  AddServerFlags(app, &c);
+  app.parse("--delaunay-helpers 0 --metrics-port 9999",
+            /*program_name_included=*/false);
+  c.metrics.bind = bind;
+  return FinalizeConfig(&c);
+}
+
+TEST(ConfigTest, MetricsBindMustBeAnAddressTheEndpointCanBind) {
+  // Before: 999.1.1.1 was taken, logged as such, and civetweb listened on
+  // 231.1.1.1; ::1 failed at start with civetweb's "null context".
+  for (const char* bind : {"999.1.1.1", "localhost", "1.2.3", ""}) {
+    EXPECT_NE(MetricsBindError(bind).find("is not an IPv4 or IPv6 address"),
+              std::string::npos)
+        << bind << ": " << MetricsBindError(bind);
+  }
+  for (const char* bind : {"127.0.0.1", "0.0.0.0"}) {
+    EXPECT_EQ(MetricsBindError(bind), "") << bind;
+  }
+  for (const char* bind : {"::1", "::"}) {
+    if (MetricsSupportIpv6()) {
+      EXPECT_EQ(MetricsBindError(bind), "") << bind;
+    } else {
+      EXPECT_NE(MetricsBindError(bind).find("has no IPv6"), std::string::npos)
+          << bind << ": " << MetricsBindError(bind);
+    }
+  }
 }
 
 }  // namespace

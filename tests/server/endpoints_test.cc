@@ -22,14 +22,22 @@ namespace {
 using grpc::health::v1::HealthCheckResponse;
 using Clock = std::chrono::steady_clock;
 
-// A TCP connection to 127.0.0.1:port; -1 when refused.
-int Connect(int port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+// A TCP connection to loopback (127.0.0.1, or ::1 with ipv6) port; -1 when
+// refused.
+int Connect(int port, bool ipv6 = false) {
+  const int fd = ::socket(ipv6 ? AF_INET6 : AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};
+  sockaddr_in6 addr6{};
   addr.sin_family = AF_INET;
   addr.sin_port = htons(static_cast<uint16_t>(port));
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+  addr6.sin6_family = AF_INET6;
+  addr6.sin6_port = htons(static_cast<uint16_t>(port));
+  addr6.sin6_addr = in6addr_loopback;
+  const int rc =
+      ipv6 ? ::connect(fd, reinterpret_cast<sockaddr*>(&addr6), sizeof addr6)
+           : ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
+  if (rc != 0) {
     ::close(fd);
     return -1;
   }
@@ -64,8 +72,9 @@ TEST(EndpointsTest, SecondServerOnTheSamePortIsRefused) {
 }
 
 // The whole answer of the metrics endpoint to one raw HTTP request.
-std::string HttpExchange(int port, const std::string& request) {
-  const int fd = Connect(port);
+std::string HttpExchange(int port, const std::string& request,
+                         bool ipv6 = false) {
+  const int fd = Connect(port, ipv6);
   if (fd < 0) return "";
   if (::write(fd, request.data(), request.size()) !=
       static_cast<ssize_t>(request.size())) {
@@ -139,9 +148,10 @@ TEST(EndpointsTest, MetricsAnswerWhileSlowClientsHoldConnections) {
   auto s = testing::StartServer(config);
   ASSERT_TRUE(s.server);
   EXPECT_EQ(config.metrics.bind, "127.0.0.1");  // the default
-  // Slow clients: a partial request line, then silence.
+  // Slow clients: a partial request line, then silence. Before: 40 of them
+  // delayed a scrape by 20 s (4 threads, each held 2 s by one of them).
   std::vector<int> slow;
-  for (int i = 0; i < 4; ++i) {  // as many as the endpoint has threads
+  for (int i = 0; i < 40; ++i) {
     const int fd = Connect(config.metrics.port);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(::write(fd, "GET /met", 8), 8);
@@ -160,11 +170,28 @@ TEST(EndpointsTest, MetricsAnswerWhileSlowClientsHoldConnections) {
   ::close(fd);
   const double seconds =
       std::chrono::duration<double>(Clock::now() - t0).count();
-  std::cout << "scrape with 4 slow clients: " << seconds << " s\n";
-  EXPECT_LT(seconds, 4.0);  // before: blocked for as long as they stayed
+  std::cout << "scrape with 40 slow clients: " << seconds
+            << " s (about 40 / threads x the request timeout, 2.5 s)\n";
+  EXPECT_LT(seconds, 15.0);  // a generous bound: before, 20 s
   EXPECT_NE(body.find("dot_delaunay_helper_starts_total"), std::string::npos)
       << body.substr(0, 300);
   for (int f : slow) ::close(f);
+}
+
+TEST(EndpointsTest, MetricsBindToAnIpv6AddressWhenTheBuildCan) {
+  // Before: --metrics-bind ::1 passed the flag checks and failed at start
+  // with civetweb's "null context" (Debian builds it without IPv6).
+  if (!server::MetricsSupportIpv6()) {
+    GTEST_SKIP() << "civetweb without IPv6 (ConfigTest checks the refusal)";
+  }
+  auto config = testing::LoopbackConfig();
+  config.metrics.port = testing::FreeLoopbackPort();
+  config.metrics.bind = "::1";
+  auto s = testing::StartServer(config);
+  ASSERT_TRUE(s.server);
+  const std::string answer = HttpExchange(
+      config.metrics.port, "HEAD /metrics HTTP/1.0\r\n\r\n", /*ipv6=*/true);
+  EXPECT_EQ(answer.rfind("HTTP/1.1 200", 0), 0u) << answer.substr(0, 80);
 }
 
 }  // namespace
