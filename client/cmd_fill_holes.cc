@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -63,7 +64,7 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                   "(with --input-format)")
       ->required();
   cmd->add_option("-o,--output", f->output,
-                  "filled mesh (.off, .obj, .ply, .stl; - for stdout as "
+                  "filled mesh (.off, .obj, .ply; - for stdout as "
                   "--output-format); default: NAME.filled.ply beside the "
                   "input");
   cmd->add_option("--input-format", f->stdin_format,
@@ -84,7 +85,16 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_option("--max-hole-diameter", f->max_hole_diameter,
                   "fill only holes at most this wide (bounding-box diagonal; "
                   "0: any)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            // CLI::NonNegativeNumber printed the range up to DBL_MAX in full.
+            char* end = nullptr;
+            const double d = std::strtod(value.c_str(), &end);
+            return end != value.c_str() && *end == '\0' && d >= 0
+                       ? std::string()
+                       : "must be a number >= 0, got " + value;
+          },
+          "FLOAT >= 0"))
       ->group("Which holes");
   cmd->add_flag("--skip-longest", f->skip_longest,
                 "leave the longest border open (a terrain's rim)")
@@ -185,6 +195,15 @@ Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
   }
   Status s = ReadPolygonSoupFile(path, soup);
   std::remove(path.c_str());
+  // Errors name what the user gave, not the temporary copy.
+  const std::string shown = f.input == "-" ? "stdin" : "'" + f.input + "'";
+  for (size_t at;
+       (at = s.message.find("'" + path + "'")) != std::string::npos;) {
+    s.message.replace(at, path.size() + 2, shown);
+  }
+  for (size_t at; (at = s.message.find(path)) != std::string::npos;) {
+    s.message.replace(at, path.size(), shown);
+  }
   return s;
 }
 

@@ -12,15 +12,26 @@
 namespace dot::server {
 namespace {
 
-std::string ReadFile(const std::string& path, std::string* error) {
+// The PEM file at `path`, which must hold a block whose BEGIN line ends in
+// `label` ("CERTIFICATE", "PRIVATE KEY"); `flag` names it in the error.
+std::string ReadPem(const std::string& flag, const std::string& path,
+                    const std::string& label, std::string* error) {
+  if (!error->empty()) return "";
   std::ifstream in(path);
-  if (!in) {
-    *error = "cannot read '" + path + "'";
+  std::ostringstream s;
+  if (in) s << in.rdbuf();
+  const std::string text = s.str();
+  if (text.empty()) {
+    *error =
+        flag + ": cannot read '" + path + "' (missing, empty or not a file)";
     return "";
   }
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  const size_t begin = text.find("-----BEGIN ");
+  if (begin == std::string::npos ||
+      text.find(label + "-----", begin) == std::string::npos) {
+    *error = flag + ": '" + path + "' holds no PEM " + label;
+  }
+  return text;
 }
 
 std::shared_ptr<grpc::ServerCredentials> Credentials(const TlsOptions& tls,
@@ -31,9 +42,11 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const TlsOptions& tls,
           ? GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE
           : GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY);
   options.pem_key_cert_pairs.push_back(
-      {ReadFile(tls.key, error), ReadFile(tls.cert, error)});
+      {ReadPem("--tls-key", tls.key, "PRIVATE KEY", error),
+       ReadPem("--tls-cert", tls.cert, "CERTIFICATE", error)});
   if (!tls.client_ca.empty()) {
-    options.pem_root_certs = ReadFile(tls.client_ca, error);
+    options.pem_root_certs =
+        ReadPem("--tls-client-ca", tls.client_ca, "CERTIFICATE", error);
   }
   return error->empty() ? grpc::SslServerCredentials(options) : nullptr;
 }
@@ -95,6 +108,13 @@ std::unique_ptr<DotServer> DotServer::Start(ServerConfig config,
   s->server_ = builder.BuildAndStart();
   if (!s->server_ || s->port_ == 0) {
     *error = "cannot listen on " + c.listen;
+    if (!c.tls.cert.empty()) {
+      // gRPC says which in its own log line; a key that does not match the
+      // certificate is the usual cause.
+      *error +=
+          " (the address is in use or not valid, or gRPC refused the "
+          "TLS certificate and key: see its error above)";
+    }
     return nullptr;
   }
   if (!c.health_listen.empty()) {

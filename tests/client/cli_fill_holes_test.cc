@@ -137,6 +137,23 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
       Path("holey.off") + " 2>/dev/null | head -1");
   EXPECT_EQ(r.out.rfind("v ", 0), 0u) << r.out;
 
+  // An empty stdin-like input is named as given (was: the temporary copy).
+  r = Dotctl("fill-holes --local /dev/null --input-format off");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("'/dev/null' is empty"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("dotctl-stdin"), std::string::npos) << r.out;
+  // A failed write says why (was: "failed writing the mesh" alone).
+  r = Dotctl("fill-holes --local " + Path("holey.off") +
+             " -o /dev/full --output-format off");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("No space left on device"), std::string::npos) << r.out;
+  // A negative diameter (was: a range printed up to DBL_MAX in full).
+  r = Dotctl("fill-holes --local " + Path("holey.off") +
+             " --max-hole-diameter -1");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("must be a number >= 0, got -1"), std::string::npos)
+      << r.out;
+
   // A selection that leaves nothing: every selected hole filled, exit 0,
   // but the mesh stays open.
   r = Dotctl("fill-holes --local " + Path("holey.off") +

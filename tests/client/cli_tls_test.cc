@@ -86,6 +86,40 @@ TEST(TlsTest, TlsAndMutualTls) {
   fs::remove_all(d);
 }
 
+TEST(TlsTest, BadTlsFilesAreNamedNotBlamedOnTheAddress) {
+  // Before: junk certificates, keys or CAs, and a directory, all ended in
+  // "cannot listen on 127.0.0.1:0".
+  const fs::path d = MakeCertificates();
+  { std::ofstream(d / "junk.pem") << "not a certificate\n"; }
+  struct Case {
+    std::string cert, key, ca, words;
+  };
+  const std::string cert = (d / "server.pem").string(),
+                    key = (d / "server.key").string(),
+                    junk = (d / "junk.pem").string();
+  const Case cases[] = {
+      {junk, key, "", "--tls-cert: '" + junk + "' holds no PEM CERTIFICATE"},
+      {cert, junk, "", "--tls-key: '" + junk + "' holds no PEM PRIVATE KEY"},
+      {cert, key, junk,
+       "--tls-client-ca: '" + junk + "' holds no PEM CERTIFICATE"},
+      {d.string(), key, "", "--tls-cert: cannot read '" + d.string() + "'"},
+      {cert, cert, "", "--tls-key: '" + cert + "' holds no PEM PRIVATE KEY"},
+      // A key that is not the certificate's: only gRPC can tell.
+      {cert, (d / "client.key").string(), "", "gRPC refused the TLS"},
+  };
+  for (const Case& c : cases) {
+    auto config = testing::LoopbackConfig();
+    config.tls.cert = c.cert;
+    config.tls.key = c.key;
+    config.tls.client_ca = c.ca;
+    std::string error;
+    EXPECT_EQ(server::DotServer::Start(config, &error), nullptr) << c.words;
+    EXPECT_NE(error.find(c.words), std::string::npos)
+        << "expected '" << c.words << "' in: " << error;
+  }
+  fs::remove_all(d);
+}
+
 TEST(TlsTest, ContainerHealthCheckPassesWithTlsOn) {
   // Before: the image's HEALTHCHECK (`dotctl health`) read the server's
   // DOT_TLS_CERT/DOT_TLS_KEY as a client certificate, spoke plaintext to

@@ -49,8 +49,8 @@ std::vector<Message> ReadStream(const std::string& name) {
     EXPECT_LE(at + 4, data.size()) << "truncated length prefix";
     if (at + 4 > data.size()) break;
     const auto* b = reinterpret_cast<const unsigned char*>(data.data() + at);
-    const uint32_t size = b[0] | b[1] << 8 | b[2] << 16 |
-                          static_cast<uint32_t>(b[3]) << 24;
+    const uint32_t size =
+        b[0] | b[1] << 8 | b[2] << 16 | static_cast<uint32_t>(b[3]) << 24;
     at += 4;
     EXPECT_LE(at + size, data.size()) << "truncated message";
     if (at + size > data.size()) break;
@@ -110,13 +110,14 @@ void ExpectSameMesh(const MeshData& got, const std::vector<Vec3>& vertices,
 }
 
 TEST(GoldenStreamTest, TriangulateStreamReassemblesToTheLocalResult) {
-  const auto messages = ReadStream<v1::TriangulateResponse>(
-      "triangulate.stream");
+  const auto messages =
+      ReadStream<v1::TriangulateResponse>("triangulate.stream");
   const Struct doc = ReadJson("triangulate.json");
   const Struct& request = Field(doc, "request").struct_value();
   const Struct& expected = Field(doc, "expected").struct_value();
-  ASSERT_TRUE(Field(Field(request, "options").struct_value(),
-                    "omit_input_vertices").bool_value());
+  ASSERT_TRUE(
+      Field(Field(request, "options").struct_value(), "omit_input_vertices")
+          .bool_value());
   const std::vector<Vec3> input = Points(Field(request, "points"));
 
   // TriangulateRemote's loop, over the recorded messages.
@@ -189,9 +190,9 @@ TEST(GoldenStreamTest, FillHolesStreamReassemblesToTheLocalResult) {
             Field(expected, "added_vertices").number_value());
   EXPECT_TRUE(report.closed());
   MeshData mesh;
-  const Status s = assembler.Finish(
-      report.input_vertices() + report.added_vertices(),
-      report.input_faces() + report.added_faces(), {}, &mesh);
+  const Status s =
+      assembler.Finish(report.input_vertices() + report.added_vertices(),
+                       report.input_faces() + report.added_faces(), {}, &mesh);
   ASSERT_TRUE(s.ok()) << s.message;
   ExpectSameMesh(mesh, Points(Field(expected, "vertices")),
                  Triangles(Field(expected, "faces")));
@@ -200,8 +201,8 @@ TEST(GoldenStreamTest, FillHolesStreamReassemblesToTheLocalResult) {
 // The checks that make a bad stream fail, on the recorded one cut short or
 // shuffled (the Python tests make the same cuts and expect the same words).
 TEST(GoldenStreamTest, DamagedStreamsAreRefused) {
-  const auto messages = ReadStream<v1::TriangulateResponse>(
-      "triangulate.stream");
+  const auto messages =
+      ReadStream<v1::TriangulateResponse>("triangulate.stream");
   const Struct doc = ReadJson("triangulate.json");
   const std::vector<Vec3> input =
       Points(Field(Field(doc, "request").struct_value(), "points"));

@@ -285,9 +285,18 @@ void WriteBinaryPly(std::ostream& out, const MeshData& mesh) {
 Status WriteMesh(std::ostream& out, const std::string& format,
                  const MeshData& mesh, bool ascii) {
   out.precision(17);
+  errno = 0;
+  // The system's reason when a write failed (a full disk, a closed pipe).
+  auto written = [&out] {
+    out.flush();
+    if (out) return OkStatus();
+    return InvalidArgument(
+        std::string("failed writing the mesh") +
+        (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+  };
   if (format == "ply" && !ascii) {
     WriteBinaryPly(out, mesh);
-    return out ? OkStatus() : InvalidArgument("failed writing the mesh");
+    return written();
   }
   if (format == "obj") {
     for (const Vec3& p : mesh.vertices)
@@ -314,7 +323,7 @@ Status WriteMesh(std::ostream& out, const std::string& format,
     return InvalidArgument("unknown mesh format '" + format +
                            "'; use obj, ply or off");
   }
-  return out ? OkStatus() : InvalidArgument("failed writing the mesh");
+  return written();
 }
 
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,
