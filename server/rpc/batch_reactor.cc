@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/batch_reactor.h"
 
-#include <grpcpp/impl/codegen/proto_utils.h>
+#include "rpc/raw_message.h"
 
 namespace dot::server {
 namespace {
@@ -33,11 +33,9 @@ void BatchReactor::OnReadDone(bool ok) {
     // request_ is ours until reading_ is cleared.
     Item item;
     v1::TriangulateRequest request;
-    const grpc::Status parsed =
-        grpc::SerializationTraits<v1::TriangulateRequest>::Deserialize(
-            &request_, &request);
+    const bool parsed = ParseRaw(&request_, &request);
     ++requests_read_;
-    if (parsed.ok()) {
+    if (parsed) {
       item.job = runner_->Admit(request, context_->deadline(),
                                 "TriangulateBatch", &item.refused);
     } else {  // not admitted: only answered (logged and counted)
@@ -142,10 +140,7 @@ void BatchReactor::WriteCurrent() {
     item.response->Next(&message_);
     item.written = item.response->done();
   }
-  bool own_buffer = false;
-  message_bytes_.Clear();  // Serialize wants an empty buffer
-  grpc::SerializationTraits<v1::TriangulateResponse>::Serialize(
-      message_, &message_bytes_, &own_buffer);
+  SerializeRaw(message_, &message_bytes_);
   StartWrite(&message_bytes_);
 }
 

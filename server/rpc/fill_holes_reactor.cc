@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/fill_holes_reactor.h"
 
-#include <grpcpp/impl/codegen/proto_utils.h>
-
 #include <algorithm>
 
 #include "rpc/job_response.h"
+#include "rpc/raw_message.h"
 
 namespace dot::server {
 namespace {
@@ -82,9 +81,7 @@ void FillHolesReactor::OnReadDone(bool ok) {
 grpc::Status FillHolesReactor::Accept() {
   v1::FillHolesRequest m;
   const size_t position = reader_.messages();
-  if (!grpc::SerializationTraits<v1::FillHolesRequest>::Deserialize(&request_,
-                                                                    &m)
-           .ok()) {
+  if (!ParseRaw(&request_, &m)) {
     // Before: the upload ended there as if the client had half-closed, and
     // the partial mesh was filled and answered OK.
     return {grpc::StatusCode::INVALID_ARGUMENT,
@@ -328,10 +325,7 @@ void FillHolesReactor::WriteNext() {
 }
 
 void FillHolesReactor::Write(const v1::FillHolesResponse& message, bool last) {
-  message_bytes_.Clear();  // Serialize wants an empty buffer
-  bool own_buffer = false;
-  grpc::SerializationTraits<v1::FillHolesResponse>::Serialize(
-      message, &message_bytes_, &own_buffer);
+  SerializeRaw(message, &message_bytes_);
   if (last) {
     StartWriteAndFinish(&message_bytes_, grpc::WriteOptions(), final_status_);
   } else {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/source_reactor.h"
 
+#include "rpc/raw_message.h"
+
 namespace dot::server {
 namespace {
 constexpr size_t kChunkBytes = 256 * 1024;
@@ -21,6 +23,8 @@ SourceReactor::SourceReactor(const ServiceOptions& o) {
   WriteNext();
 }
 
+SourceReactor::SourceReactor(const grpc::Status& refused) { Finish(refused); }
+
 void SourceReactor::WriteNext() {
   std::string* data = chunk_.mutable_data();
   data->resize(kChunkBytes);
@@ -33,7 +37,8 @@ void SourceReactor::WriteNext() {
     return;
   }
   data->resize(static_cast<size_t>(got));
-  StartWrite(&chunk_);
+  SerializeRaw(chunk_, &chunk_bytes_);
+  StartWrite(&chunk_bytes_);
 }
 
 void SourceReactor::OnWriteDone(bool ok) {

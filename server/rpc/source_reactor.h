@@ -14,9 +14,11 @@
 
 namespace dot::server {
 
-class SourceReactor final : public grpc::ServerWriteReactor<v1::SourceChunk> {
+class SourceReactor final : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
  public:
   explicit SourceReactor(const ServiceOptions& options);
+  // Answers `refused` alone (a request that does not parse).
+  explicit SourceReactor(const grpc::Status& refused);
   void OnWriteDone(bool ok) override;
   void OnDone() override;
 
@@ -24,6 +26,7 @@ class SourceReactor final : public grpc::ServerWriteReactor<v1::SourceChunk> {
   void WriteNext();
   std::ifstream in_;
   v1::SourceChunk chunk_;
+  grpc::ByteBuffer chunk_bytes_;  // chunk_, serialized, being written
 };
 
 }  // namespace dot::server

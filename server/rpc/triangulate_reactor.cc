@@ -1,12 +1,22 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "rpc/triangulate_reactor.h"
 
+#include "rpc/raw_message.h"
+
 namespace dot::server {
 
 TriangulateReactor::TriangulateReactor(JobRunner* runner,
                                        grpc::CallbackServerContext* context,
-                                       const v1::TriangulateRequest& request)
+                                       grpc::ByteBuffer bytes)
     : runner_(runner), context_(context) {
+  v1::TriangulateRequest request;
+  if (!ParseRaw(&bytes, &request)) {
+    job_ = std::make_shared<Job>();  // not admitted: answered and logged
+    job_->rpc = "Triangulate";
+    job_->arrived = Clock::now();
+    FinishWith(UnparsableRequest("Triangulate", "TriangulateRequest"));
+    return;
+  }
   grpc::Status refused;
   job_ = runner_->Admit(request, context->deadline(), "Triangulate", &refused);
   if (!refused.ok()) {
@@ -43,7 +53,7 @@ void TriangulateReactor::OnProgress(const v1::Progress& progress) {
     message_.set_id(job_->id);
     *message_.mutable_progress() = progress;
   }
-  StartWrite(&message_);
+  Write(false);
 }
 
 void TriangulateReactor::OnJobDone() {
@@ -90,11 +100,16 @@ void TriangulateReactor::WriteNext() {
     return;
   }
   response_->Next(&message_);
-  if (response_->done()) {
-    final_status_ = grpc::Status::OK;
-    StartWriteAndFinish(&message_, grpc::WriteOptions(), final_status_);
+  if (response_->done()) final_status_ = grpc::Status::OK;
+  Write(response_->done());
+}
+
+void TriangulateReactor::Write(bool last) {
+  SerializeRaw(message_, &message_bytes_);
+  if (last) {
+    StartWriteAndFinish(&message_bytes_, grpc::WriteOptions(), final_status_);
   } else {
-    StartWrite(&message_);
+    StartWrite(&message_bytes_);
   }
 }
 

@@ -19,10 +19,11 @@
 namespace dot::server {
 
 class TriangulateReactor final
-    : public grpc::ServerWriteReactor<v1::TriangulateResponse> {
+    : public grpc::ServerWriteReactor<grpc::ByteBuffer> {
  public:
+  // `request` is parsed here: one that does not parse is refused by name.
   TriangulateReactor(JobRunner* runner, grpc::CallbackServerContext* context,
-                     const v1::TriangulateRequest& request);
+                     grpc::ByteBuffer request);
 
   void OnWriteDone(bool ok) override;
   void OnCancel() override;
@@ -36,6 +37,8 @@ class TriangulateReactor final
   // called by whoever holds the (single) right to write.
   void WriteNext();
   void FinishWith(const grpc::Status& status);
+  // Starts writing message_ (and finishing with final_status_ when last).
+  void Write(bool last);
 
   JobRunner* const runner_;
   grpc::CallbackServerContext* const context_;
@@ -50,6 +53,7 @@ class TriangulateReactor final
 
   std::optional<JobResponse> response_;
   v1::TriangulateResponse message_;  // the message being written
+  grpc::ByteBuffer message_bytes_;   // message_, serialized
 };
 
 }  // namespace dot::server

@@ -5,6 +5,7 @@
 
 #include "rpc/batch_reactor.h"
 #include "rpc/fill_holes_reactor.h"
+#include "rpc/raw_message.h"
 #include "rpc/source_reactor.h"
 #include "rpc/triangulate_reactor.h"
 
@@ -24,9 +25,8 @@ TriangulatorService::TriangulatorService(JobRunner* runner,
 
 // Reactors are created with new and delete themselves in OnDone: the
 // ownership model of gRPC's callback API.
-grpc::ServerWriteReactor<v1::TriangulateResponse>*
-TriangulatorService::Triangulate(grpc::CallbackServerContext* context,
-                                 const v1::TriangulateRequest* request) {
+grpc::ServerWriteReactor<grpc::ByteBuffer>* TriangulatorService::Triangulate(
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request) {
   return new TriangulateReactor(runner_, context, *request);
 }
 
@@ -40,14 +40,35 @@ TriangulatorService::FillHoles(grpc::CallbackServerContext* context) {
   return new FillHolesReactor(runner_, context);
 }
 
-grpc::ServerWriteReactor<v1::SourceChunk>* TriangulatorService::GetSource(
-    grpc::CallbackServerContext*, const v1::GetSourceRequest*) {
+grpc::ServerWriteReactor<grpc::ByteBuffer>* TriangulatorService::GetSource(
+    grpc::CallbackServerContext*, const grpc::ByteBuffer* request) {
+  grpc::ByteBuffer bytes = *request;
+  v1::GetSourceRequest parsed;
+  if (!ParseRaw(&bytes, &parsed)) {
+    return new SourceReactor(
+        UnparsableRequest("GetSource", "GetSourceRequest"));
+  }
   return new SourceReactor(runner_->options());
 }
 
 grpc::ServerUnaryReactor* TriangulatorService::GetServerInfo(
-    grpc::CallbackServerContext* context, const v1::GetServerInfoRequest*,
-    v1::ServerInfo* info) {
+    grpc::CallbackServerContext* context, const grpc::ByteBuffer* request,
+    grpc::ByteBuffer* response) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  grpc::ByteBuffer bytes = *request;
+  v1::GetServerInfoRequest parsed;
+  if (!ParseRaw(&bytes, &parsed)) {
+    reactor->Finish(UnparsableRequest("GetServerInfo", "GetServerInfoRequest"));
+    return reactor;
+  }
+  v1::ServerInfo info;
+  FillServerInfo(&info);
+  SerializeRaw(info, response);
+  reactor->Finish(grpc::Status::OK);
+  return reactor;
+}
+
+void TriangulatorService::FillServerInfo(v1::ServerInfo* info) const {
   const ServiceOptions& o = runner_->options();
   const DelaunayBackend preferred = o.solve.delaunay;
   auto def = [preferred](DelaunayBackend b) {
@@ -95,9 +116,6 @@ grpc::ServerUnaryReactor* TriangulatorService::GetServerInfo(
       "links TetGen, AGPL-3.0+). Its complete corresponding source is "
       "available to every user: " +
       where + ".");
-  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  reactor->Finish(grpc::Status::OK);
-  return reactor;
 }
 
 }  // namespace dot::server

@@ -13,14 +13,13 @@
 
 namespace dot::server {
 
-// TriangulateBatch takes its messages raw: gRPC reports a message that does
-// not parse as the end of the stream, so the reactor parses them itself and
-// fails such an item alone (BatchReactor).
+// Every method takes its messages raw and parses them itself
+// (rpc/raw_message.h): a message that does not parse is refused by name.
 using TriangulatorCallbackBase =
-    v1::Triangulator::WithCallbackMethod_Triangulate<
+    v1::Triangulator::WithRawCallbackMethod_Triangulate<
         v1::Triangulator::WithRawCallbackMethod_TriangulateBatch<
-            v1::Triangulator::WithCallbackMethod_GetServerInfo<
-                v1::Triangulator::WithCallbackMethod_GetSource<
+            v1::Triangulator::WithRawCallbackMethod_GetServerInfo<
+                v1::Triangulator::WithRawCallbackMethod_GetSource<
                     v1::Triangulator::WithRawCallbackMethod_FillHoles<
                         v1::Triangulator::Service>>>>>;
 
@@ -30,20 +29,24 @@ class TriangulatorService final : public TriangulatorCallbackBase {
   TriangulatorService(JobRunner* runner, const SpaceCache* cache,
                       const DelaunayHelperPool* helpers);
 
-  grpc::ServerWriteReactor<v1::TriangulateResponse>* Triangulate(
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* Triangulate(
       grpc::CallbackServerContext* context,
-      const v1::TriangulateRequest* request) override;
+      const grpc::ByteBuffer* request) override;
   grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* TriangulateBatch(
       grpc::CallbackServerContext* context) override;
-  grpc::ServerUnaryReactor* GetServerInfo(
-      grpc::CallbackServerContext* context,
-      const v1::GetServerInfoRequest* request, v1::ServerInfo* info) override;
+  grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
+                                          const grpc::ByteBuffer* request,
+                                          grpc::ByteBuffer* response) override;
   grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* FillHoles(
       grpc::CallbackServerContext* context) override;
-  grpc::ServerWriteReactor<v1::SourceChunk>* GetSource(
+  grpc::ServerWriteReactor<grpc::ByteBuffer>* GetSource(
       grpc::CallbackServerContext* context,
-      const v1::GetSourceRequest* request) override;
+      const grpc::ByteBuffer* request) override;
 
+ private:
+  void FillServerInfo(v1::ServerInfo* info) const;
+
+ public:
  private:
   JobRunner* const runner_;
   const SpaceCache* const cache_;
