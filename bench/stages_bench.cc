@@ -92,7 +92,7 @@ BENCHMARK_CAPTURE(BM_DynamicProgram, dot2, true)
     ->Unit(benchmark::kMillisecond);
 
 void Solve(benchmark::State& state, Curve curve, Metric metric) {
-  Problem p{MakeCurve(curve, static_cast<int>(state.range(0))), {}, {}};
+  Problem p{MakeCurve(curve, static_cast<int>(state.range(0))), {}, {}, {}, {}};
   p.weights[metric] = 1;
   Stats last;
   for (auto _ : state) {
@@ -131,8 +131,11 @@ BENCHMARK(BM_Dot2Twist)
     ->Unit(benchmark::kMillisecond);
 
 void BM_Validate(benchmark::State& state) {
-  Problem p{
-      MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0))), {}, {}};
+  Problem p{MakeCurve(Curve::kMonkey, static_cast<int>(state.range(0))),
+            {},
+            {},
+            {},
+            {}};
   const Result r = Triangulate(p);
   for (auto _ : state) {
     benchmark::DoNotOptimize(ValidateMesh(r.vertices, r.polygon, r.triangles));
@@ -143,7 +146,7 @@ BENCHMARK(BM_Validate)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 #ifdef DOT_HAVE_WIRE
 // Result -> summary and mesh chunks -> bytes, as the server sends them.
 void BM_Serialize(benchmark::State& state) {
-  Problem p{Monkey(state), {}, {}};
+  Problem p{Monkey(state), {}, {}, {}, {}};
   const Result r = Triangulate(p);
   for (auto _ : state) {
     v1::Summary summary;

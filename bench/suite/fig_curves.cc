@@ -66,7 +66,7 @@ int RunCurves(const Config& config, std::ostream& report) {
       Point pt;
       pt.curve = CurveName(curve);
       pt.n = n;
-      const Problem p{MakeCurve(curve, n), {}, area};
+      const Problem p{MakeCurve(curve, n), {}, area, {}, {}};
       std::cerr << "curves: " << pt.curve << " n=" << n << "\n";
       Result r1, r2;
       if (!skip("dot1", n)) {

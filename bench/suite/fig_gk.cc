@@ -31,7 +31,8 @@ void RunGk(const Config& config, std::ostream& report) {
         std::pair{"GK2", Metric::kSquaredDihedral}}) {
     for (int n : sizes) {
       std::cerr << "gk: " << name << " n=" << n << "\n";
-      const Problem p{MakeCurve(Curve::kSpiral, n), {}, OneMetric(metric)};
+      const Problem p{
+          MakeCurve(Curve::kSpiral, n), {}, OneMetric(metric), {}, {}};
       Result r;
       const Sample s = Measure(config.reps, config.long_run_s, config.cap_s,
                                [&] { r = Triangulate(p, all); });

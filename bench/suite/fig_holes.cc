@@ -46,7 +46,7 @@ int RunHoles(const Config& config, std::ostream& report) {
     if (points.size() % 20 == 0) {
       std::cerr << "holes: " << points.size() << "/" << holes.size() << "\n";
     }
-    const Problem p{h.boundary.vertices, h.boundary.normals, area};
+    const Problem p{h.boundary.vertices, h.boundary.normals, area, {}, {}};
     Options plain;
     plain.space = SearchSpace::kDelaunay;
     Result r1, r2;

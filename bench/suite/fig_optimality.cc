@@ -54,7 +54,7 @@ void RunOptimality(const Config& config, std::ostream& report) {
     std::vector<double> ratios;
     int intersecting = 0;
     for (const Input& in : inputs) {
-      const Problem p{in.loop, {}, OneMetric(m)};
+      const Problem p{in.loop, {}, OneMetric(m), {}, {}};
       const Result d = Triangulate(p, dot_options);
       if (!d.status.ok()) continue;
       const Result g = Triangulate(p, gk_options);

@@ -26,7 +26,7 @@ bool FindHexagon(bool intersecting, Found* out) {
   for (int attempt = 0; attempt < 200000; ++attempt) {
     std::vector<Vec3> p(6);
     for (Vec3& v : p) v = {u(rng), u(rng), u(rng)};
-    Problem problem{p, {}, {}};
+    Problem problem{p, {}, {}, {}, {}};
     if (Triangulate(problem, delaunay).status.code !=
         StatusCode::kNoTriangulation) {
       continue;
@@ -42,7 +42,7 @@ bool FindHexagon(bool intersecting, Found* out) {
 TEST(AutoFallbackTest, SelfIntersectingOptimumIsNotOk) {
   Found f;
   ASSERT_TRUE(FindHexagon(true, &f));
-  const Result r = Triangulate({f.polygon, {}, {}});
+  const Result r = Triangulate({f.polygon, {}, {}, {}, {}});
   EXPECT_EQ(r.status.code, StatusCode::kNoTriangulation);
   EXPECT_NE(r.status.message.find("self-intersects"), std::string::npos)
       << r.status.message;
@@ -52,7 +52,7 @@ TEST(AutoFallbackTest, SelfIntersectingOptimumIsNotOk) {
 TEST(AutoFallbackTest, IntersectionFreeOptimumIsAccepted) {
   Found f;
   ASSERT_TRUE(FindHexagon(false, &f));
-  const Result r = Triangulate({f.polygon, {}, {}});
+  const Result r = Triangulate({f.polygon, {}, {}, {}, {}});
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_EQ(r.space_used, SpaceUsed::kAll);
   EXPECT_EQ(r.intersecting_pairs, 0);

@@ -25,7 +25,7 @@ void TriangulateGrownHoles(const MeshData& mesh, const std::vector<int>& sizes,
     ++*attempted;
     EXPECT_EQ(hole.triangles, size);
     EXPECT_EQ(hole.boundary.normals.size(), hole.boundary.vertices.size());
-    Problem p{hole.boundary.vertices, hole.boundary.normals, {}};
+    Problem p{hole.boundary.vertices, hole.boundary.normals, {}, {}, {}};
     p.weights[Metric::kArea] = 1;
     p.weights[Metric::kNormalDeviation] = 0.1;
     p.weights[Metric::kSquaredDihedral] = 0.5;

@@ -17,7 +17,7 @@ class CurveOutputTest : public ::testing::TestWithParam<CurveCase> {};
 
 TEST_P(CurveOutputTest, OutputIsValidAndIntersectionFree) {
   const auto [curve, n, bi] = GetParam();
-  Problem p{MakeCurve(curve, n), {}, {}};
+  Problem p{MakeCurve(curve, n), {}, {}, {}, {}};
   p.weights[bi ? Metric::kSquaredDihedral : Metric::kArea] = 1;
   Options o;
   o.space = SearchSpace::kDelaunay;  // a fallback to 'all' would hide failures
@@ -54,7 +54,7 @@ INSTANTIATE_TEST_SUITE_P(PaperCurves, CurveOutputTest,
 
 TEST(CurveTest, TrefoilHasNoTriangulation) {
   for (int n : {40, 120, 600}) {
-    Problem p{MakeCurve(Curve::kTrefoil, n), {}, {}};
+    Problem p{MakeCurve(Curve::kTrefoil, n), {}, {}, {}, {}};
     Options o;
     o.space = SearchSpace::kDelaunay;
     o.protect_edges = true;
@@ -68,7 +68,7 @@ TEST(CurveTest, TrefoilHasNoTriangulation) {
 
 TEST(CurveTest, CoarseSpiralNeedsEdgeProtection) {
   // At 15 samples the spiral's chords skip past its other arm.
-  Problem p{MakeCurve(Curve::kSpiral, 15), {}, {}};
+  Problem p{MakeCurve(Curve::kSpiral, 15), {}, {}, {}, {}};
   Options o;
   o.space = SearchSpace::kDelaunay;
   const Result before = Triangulate(p, o);

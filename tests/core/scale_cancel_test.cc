@@ -33,7 +33,7 @@ void RunWithStack(size_t bytes, Fn fn) {
 
 TEST(ScaleTest, HundredThousandVerticesOnOneMebibyteStack) {
   for (bool bi : {false, true}) {
-    Problem p{MakeCurve(Curve::kMonkey, 100000), {}, {}};
+    Problem p{MakeCurve(Curve::kMonkey, 100000), {}, {}, {}, {}};
     p.weights[bi ? Metric::kSquaredDihedral : Metric::kArea] = 1;
     Result r;
     RunWithStack(1 << 20, [&] { r = Triangulate(p); });
@@ -48,7 +48,7 @@ TEST(ScaleTest, HundredThousandVerticesOnOneMebibyteStack) {
 // Cancels a long DOT2 run when it reaches `stage` and returns the delay
 // between the cancel and Triangulate's return.
 double CancelLatencyMs(Stage stage, StatusCode* code) {
-  Problem p{MakeCurve(Curve::kTwist, 1501), {}, {}};
+  Problem p{MakeCurve(Curve::kTwist, 1501), {}, {}, {}, {}};
   p.weights[Metric::kSquaredDihedral] = 1;
   std::atomic<bool> cancel{false};
   Clock::time_point cancelled_at;
@@ -83,7 +83,7 @@ TEST(CancelTest, CancelStopsLongDot2RunInEveryStage) {
 }
 
 TEST(CancelTest, DeadlineStopsTheRun) {
-  Problem p{MakeCurve(Curve::kTwist, 1501), {}, {}};
+  Problem p{MakeCurve(Curve::kTwist, 1501), {}, {}, {}, {}};
   p.weights[Metric::kSquaredDihedral] = 1;
   Control control;
   control.deadline = Clock::now() + std::chrono::milliseconds(30);
@@ -93,7 +93,7 @@ TEST(CancelTest, DeadlineStopsTheRun) {
 }
 
 TEST(ProgressTest, ReportsStagesInOrder) {
-  Problem p{MakeCurve(Curve::kMobius, 400), {}, {}};
+  Problem p{MakeCurve(Curve::kMobius, 400), {}, {}, {}, {}};
   p.weights[Metric::kSquaredDihedral] = 1;
   std::vector<Stage> stages;
   Control control;
@@ -111,7 +111,7 @@ TEST(ProgressTest, ReportsStagesInOrder) {
 
 TEST(BackendTest, InjectedTetrahedralizationServesTheTetgenBackend) {
   DOT_SKIP_WITHOUT_TETGEN();
-  Problem p{MakeCurve(Curve::kSpiral, 200), {}, {}};
+  Problem p{MakeCurve(Curve::kSpiral, 200), {}, {}, {}, {}};
   int calls = 0;
   Control control;
   control.tetrahedralize = [&](const std::vector<Vec3>&, Tetrahedralization*) {

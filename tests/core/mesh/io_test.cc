@@ -117,7 +117,7 @@ TEST(IoTest, ObjEdgePerLineIsChainedIntoTheLoop) {
 }
 
 TEST(IoTest, MeshRoundTripsThroughEveryFormat) {
-  Problem prob{MakeCurve(Curve::kMonkey, 60), {}, {}};
+  Problem prob{MakeCurve(Curve::kMonkey, 60), {}, {}, {}, {}};
   const Result r = Triangulate(prob);
   ASSERT_TRUE(r.status.ok());
   const MeshData mesh{r.vertices, r.triangles};

@@ -11,7 +11,7 @@ namespace dot {
 namespace {
 
 Problem Square() {
-  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0.5}, {0, 1, 0}}, {}, {}};
+  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0.5}, {0, 1, 0}}, {}, {}, {}, {}};
 }
 
 void ExpectRejected(const Problem& p, const std::string& fragment,
@@ -25,7 +25,7 @@ void ExpectRejected(const Problem& p, const std::string& fragment,
 }
 
 TEST(InputTest, TooFewVertices) {
-  ExpectRejected({{{0, 0, 0}, {1, 0, 0}}, {}, {}},
+  ExpectRejected({{{0, 0, 0}, {1, 0, 0}}, {}, {}, {}, {}},
                  "polygon has 2 vertices; at least 3 are needed");
   ExpectRejected({}, "polygon has 0 vertices");
 }
@@ -81,9 +81,9 @@ TEST(InputTest, RepeatedVertex) {
 }
 
 TEST(InputTest, Collinear) {
-  ExpectRejected({{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}, {}, {}},
+  ExpectRejected({{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}, {}, {}, {}, {}},
                  "all 4 vertices are collinear");
-  ExpectRejected({{{0, 0, 0}, {1, 0, 0}, {0.5, 1e-12, 0}}, {}, {}},
+  ExpectRejected({{{0, 0, 0}, {1, 0, 0}, {0.5, 1e-12, 0}}, {}, {}, {}, {}},
                  "all 3 vertices are collinear");
 }
 
@@ -105,7 +105,7 @@ TEST(InputTest, NonFiniteWeight) {
 }
 
 TEST(InputTest, MemoryBudget) {
-  Problem p{MakeCurve(Curve::kMonkey, 500), {}, {}};
+  Problem p{MakeCurve(Curve::kMonkey, 500), {}, {}, {}, {}};
   Options o;
   o.memory_budget_bytes = 1000;
   ExpectRejected(p, "exceeds the budget", StatusCode::kResourceExhausted, o);

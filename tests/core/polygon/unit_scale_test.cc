@@ -65,12 +65,12 @@ TEST(UnitScaleTest, PowerOfTwoScalesGiveIdenticalResults) {
   for (const auto& polygon : Polygons()) {
     for (Metric m : {Metric::kArea, Metric::kPerimeter, Metric::kShape,
                      Metric::kSquaredDihedral}) {
-      const Result unit = Triangulate({polygon, {}, Only(m)});
+      const Result unit = Triangulate({polygon, {}, Only(m), {}, {}});
       ASSERT_TRUE(unit.status.ok()) << unit.status.message;
       for (int j = -1000; j <= 1000; j += 125) {
         SCOPED_TRACE(std::string(MetricName(m)) + " at 2^" + std::to_string(j));
-        const Result r =
-            Triangulate({Scaled(polygon, std::ldexp(1.0, j)), {}, Only(m)});
+        const Result r = Triangulate(
+            {Scaled(polygon, std::ldexp(1.0, j)), {}, Only(m), {}, {}});
         ASSERT_TRUE(r.status.ok()) << r.status.message;
         EXPECT_EQ(r.triangles, unit.triangles);
         const double area = std::ldexp(unit.metric_costs[Metric::kArea], 2 * j);
@@ -92,12 +92,12 @@ TEST(UnitScaleTest, DecimalScalesFrom1e300To1e300GiveTheSameOptimum) {
   for (const auto& polygon : Polygons()) {
     for (Metric m : {Metric::kArea, Metric::kPerimeter, Metric::kShape,
                      Metric::kSquaredDihedral}) {
-      const Result unit = Triangulate({polygon, {}, Only(m)});
+      const Result unit = Triangulate({polygon, {}, Only(m), {}, {}});
       ASSERT_TRUE(unit.status.ok()) << unit.status.message;
       for (double s : kScales) {
         SCOPED_TRACE(std::string(MetricName(m)) + " at scale " +
                      std::to_string(std::log10(s)));
-        const Result r = Triangulate({Scaled(polygon, s), {}, Only(m)});
+        const Result r = Triangulate({Scaled(polygon, s), {}, Only(m), {}, {}});
         ASSERT_TRUE(r.status.ok()) << r.status.message;
         EXPECT_EQ(r.vertices, Scaled(polygon, s));  // the caller's, exactly
         const int degree = m == Metric::kArea        ? 2
@@ -122,19 +122,20 @@ TEST(UnitScaleTest, OverflowingWeightedSumsAreRefused) {
   for (double w : {1e308, -1e308}) {
     MetricWeights weights;
     weights[Metric::kArea] = w;
-    const Result r = Triangulate({polygon, {}, weights});
+    const Result r = Triangulate({polygon, {}, weights, {}, {}});
     EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument) << w;
     EXPECT_NE(r.status.message.find("overflows"), std::string::npos);
   }
   MetricWeights fine;
   fine[Metric::kArea] = 1e300;
-  const Result r = Triangulate({polygon, {}, fine});
+  const Result r = Triangulate({polygon, {}, fine, {}, {}});
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_TRUE(std::isfinite(r.total_cost));
   // The same optimum as weight 1 (by cost: this polygon has equal-area
   // triangulations, and rounding may pick another of them).
-  EXPECT_NEAR(r.total_cost / 1e300,
-              Triangulate({polygon, {}, Only(Metric::kArea)}).total_cost, 1e-9);
+  EXPECT_NEAR(
+      r.total_cost / 1e300,
+      Triangulate({polygon, {}, Only(Metric::kArea), {}, {}}).total_cost, 1e-9);
 }
 
 // Found by tests/fuzz/triangulate_fuzz: at 1e200 the (unweighted) area
@@ -144,12 +145,13 @@ TEST(UnitScaleTest, OverflowIsRefusedWhenAnUnweightedMetricOverflows) {
   const auto polygon = Scaled(MakeCurve(Curve::kMonkey, 30), 1e200);
   MetricWeights weights;
   weights[Metric::kPerimeter] = 1e200;
-  const Result r = Triangulate({polygon, {}, weights});
+  const Result r = Triangulate({polygon, {}, weights, {}, {}});
   EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(r.status.message.find("overflows"), std::string::npos);
   // With a weight that fits, the answer stands: the area is just too large
   // for a double.
-  const Result fine = Triangulate({polygon, {}, Only(Metric::kPerimeter)});
+  const Result fine =
+      Triangulate({polygon, {}, Only(Metric::kPerimeter), {}, {}});
   ASSERT_TRUE(fine.status.ok()) << fine.status.message;
   EXPECT_TRUE(std::isfinite(fine.total_cost));
   EXPECT_TRUE(std::isinf(fine.metric_costs[Metric::kArea]));
@@ -158,7 +160,7 @@ TEST(UnitScaleTest, OverflowIsRefusedWhenAnUnweightedMetricOverflows) {
   MetricWeights opposite;
   opposite[Metric::kArea] = 1;
   opposite[Metric::kPerimeter] = -1e200;
-  const Result nan = Triangulate({polygon, {}, opposite});
+  const Result nan = Triangulate({polygon, {}, opposite, {}, {}});
   EXPECT_EQ(nan.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(nan.status.message.find("overflows"), std::string::npos);
 }
@@ -181,22 +183,28 @@ TEST(UnitScaleTest, CoordinatesThatWouldLosePrecisionAreRefused) {
   Options all;
   all.space = SearchSpace::kAll;
   all.planar_tolerance = 0;  // at 1e-6 it is collinear by tolerance
-  const Result r = Triangulate({wide, {}, {}}, all);
+  const Result r = Triangulate({wide, {}, {}, {}, {}}, all);
   EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
   EXPECT_EQ(r.status.message.rfind("vertex 0 ", 0), 0u) << r.status.message;
   // A subnormal coordinate next to ordinary ones, scaled down by 2^-3: its
   // low bits would be lost (and are not when they are zero).
   const double subnormal = std::ldexp(7.0, -1074);
   const Result sub = Triangulate(
-      {{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {subnormal, 4, 0}}, {}, {}});
+      {{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {subnormal, 4, 0}}, {}, {}, {}, {}});
   EXPECT_EQ(sub.status.code, StatusCode::kInvalidArgument);
   EXPECT_EQ(sub.status.message.rfind("vertex 3 ", 0), 0u) << sub.status.message;
-  const Result kept = Triangulate(
-      {{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {8 * subnormal, 4, 0}}, {}, {}});
+  const Result kept =
+      Triangulate({{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {8 * subnormal, 4, 0}},
+                   {},
+                   {},
+                   {},
+                   {}});
   EXPECT_TRUE(kept.status.ok()) << kept.status.message;
   // Scaling up is always exact: subnormal polygons are fine.
   const Result tiny = Triangulate(
       {{{0, 0, 0}, {4e-320, 0, 0}, {4e-320, 4e-320, 1e-320}, {0, 4e-320, 0}},
+       {},
+       {},
        {},
        {}});
   EXPECT_TRUE(tiny.status.ok()) << tiny.status.message;
@@ -218,7 +226,7 @@ TEST(UnitScaleTest, InsertedVerticesTheCallerCannotHoldAreRefused) {
       polygon.push_back({std::ldexp(u[0], exponent), std::ldexp(u[1], exponent),
                          std::ldexp(u[2], exponent)});
     }
-    const Result r = Triangulate({polygon, {}, {}}, protect);
+    const Result r = Triangulate({polygon, {}, {}, {}, {}}, protect);
     if (exponent == -1074) {
       EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
       EXPECT_EQ(r.status.message.rfind("edge protection inserted vertex", 0),

@@ -20,7 +20,7 @@ TEST(DegenerateTest, CosphericalCubeVertices) {
   const std::vector<Vec3> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                   {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, {0, 0, 1}};
   for (bool bi : {false, true}) {
-    Problem p{cube, {}, {}};
+    Problem p{cube, {}, {}, {}, {}};
     p.weights[bi ? Metric::kSquaredDihedral : Metric::kArea] = 1;
     Options o;
     o.space = SearchSpace::kDelaunay;
@@ -32,10 +32,10 @@ TEST(DegenerateTest, CollinearRunsAndSquareWithMidpoints) {
   // A 3D polygon with three collinear consecutive vertices on each edge.
   const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 1},
                                {2, 2, 2}, {1, 2, 1}, {0, 2, 0}, {0, 1, 0.5}};
-  ExpectValidDisk(Triangulate({v, {}, {}}));
+  ExpectValidDisk(Triangulate({v, {}, {}, {}, {}}));
   const std::vector<Vec3> square = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0},
                                     {2, 2, 0}, {1, 2, 0}, {0, 2, 0}, {0, 1, 0}};
-  const Result r = Triangulate({square, {}, {}});
+  const Result r = Triangulate({square, {}, {}, {}, {}});
   ExpectValidDisk(r);
   EXPECT_TRUE(r.planar);
 }
@@ -87,7 +87,7 @@ TEST(Lemma44Test, HullPolygonsWithDelaunayEdgesAlwaysSucceed) {
     if (!premise) continue;
     ++premise_held;
     for (bool bi : {false, true}) {
-      Problem p{v, {}, {}};
+      Problem p{v, {}, {}, {}, {}};
       p.weights[bi ? Metric::kSquaredDihedral : Metric::kArea] = 1;
       Options o;
       o.space = SearchSpace::kDelaunay;
@@ -107,7 +107,7 @@ TEST(EdgeProtectionTest, SplitsNonDelaunayEdgesUntilAllAreDelaunay) {
     for (int i = 0; i < 9; ++i) v.push_back({u(rng), u(rng), u(rng)});
     Options plain;
     plain.space = SearchSpace::kDelaunay;
-    const Result before = Triangulate({v, {}, {}}, plain);
+    const Result before = Triangulate({v, {}, {}, {}, {}}, plain);
     if (before.non_delaunay_edges.empty()) continue;
     ++protected_cases;
     EXPECT_EQ(before.status.code, StatusCode::kNoTriangulation);
@@ -115,7 +115,7 @@ TEST(EdgeProtectionTest, SplitsNonDelaunayEdgesUntilAllAreDelaunay) {
               std::string::npos);
     Options o = plain;
     o.protect_edges = true;
-    const Result after = Triangulate({v, {}, {}}, o);
+    const Result after = Triangulate({v, {}, {}, {}, {}}, o);
     EXPECT_TRUE(after.non_delaunay_edges.empty()) << after.status.message;
     EXPECT_FALSE(after.inserted.empty());
     EXPECT_EQ(after.vertices.size(), v.size() + after.inserted.size());

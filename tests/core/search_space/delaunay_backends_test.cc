@@ -65,7 +65,7 @@ TEST(DelaunayBackendsTest, SameFacesAndResultsOnScannedMeshHoles) {
       if (!GrowHole(mesh, size, seed, &hole).ok()) continue;
       SCOPED_TRACE(::testing::Message() << size << " triangles, seed " << seed);
       ExpectSameFaces(hole.boundary.vertices);
-      Problem p{hole.boundary.vertices, {}, {}};
+      Problem p{hole.boundary.vertices, {}, {}, {}, {}};
       p.weights[Metric::kSquaredDihedral] = 1;
       p.weights[Metric::kArea] = 1;
       Options cgal, tetgen;
@@ -98,7 +98,7 @@ TEST(DelaunayBackendsTest, CgalReportsCoincidentAndCoplanarPoints) {
 
 TEST(DelaunayBackendsTest, ResultReportsTheBackendUsed) {
   DOT_SKIP_WITHOUT_TETGEN();
-  Problem p{MakeCurve(Curve::kSpiral, 300), {}, {}};
+  Problem p{MakeCurve(Curve::kSpiral, 300), {}, {}, {}, {}};
   for (DelaunayBackend b : {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
     Options o;
     o.delaunay = b;
@@ -133,13 +133,13 @@ TEST(DelaunayBackendsTest, TetgenRefusesCoordinatesItsPredicatesUnderflowOn) {
   o.space = SearchSpace::kDelaunay;
   o.protect_edges = true;
   o.delaunay = DelaunayBackend::kTetgen;
-  const Result tetgen = Triangulate({polygon, {}, {}}, o);
+  const Result tetgen = Triangulate({polygon, {}, {}, {}, {}}, o);
   EXPECT_EQ(tetgen.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(tetgen.status.message.find("use the cgal backend"),
             std::string::npos)
       << tetgen.status.message;
   o.delaunay = DelaunayBackend::kCgal;
-  testing::ExpectValidDisk(Triangulate({polygon, {}, {}}, o));
+  testing::ExpectValidDisk(Triangulate({polygon, {}, {}, {}, {}}, o));
 }
 
 // Without TetGen (DOT_WITH_TETGEN=OFF) CGAL is the only backend: TetGen
@@ -154,7 +154,7 @@ TEST(DelaunayBackendsTest, BuildWithoutTetgenRefusesItClearly) {
   for (const auto& loop :
        {MakeCurve(Curve::kSpiral, 300),
         std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}) {
-    const Result r = Triangulate({loop, {}, {}}, tetgen);
+    const Result r = Triangulate({loop, {}, {}, {}, {}}, tetgen);
     EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
     EXPECT_EQ(r.status.message, expected);
     EXPECT_TRUE(r.triangles.empty());
@@ -165,7 +165,7 @@ TEST(DelaunayBackendsTest, BuildWithoutTetgenRefusesItClearly) {
   EXPECT_EQ(s.message, expected);
   // The default backend is unaffected.
   testing::ExpectValidDisk(
-      Triangulate({MakeCurve(Curve::kSpiral, 300), {}, {}}));
+      Triangulate({MakeCurve(Curve::kSpiral, 300), {}, {}, {}, {}}));
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ TEST(ParallelDelaunayTest, SameFacesAndTrianglesWithOneAndTwoThreads) {
     const std::vector<Vec3> points = MakeCurve(curve, 3000);
     ExpectSameFaces(points);
     for (bool bi : {false, true}) {
-      Problem p{points, {}, {}};
+      Problem p{points, {}, {}, {}, {}};
       p.weights[bi ? Metric::kSquaredDihedral : Metric::kArea] = 1;
       const Result one = Triangulate(p, WithThreads(1));
       const Result two = Triangulate(p, WithThreads(2));

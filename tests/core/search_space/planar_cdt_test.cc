@@ -63,7 +63,7 @@ std::vector<Vec3> Comb(int teeth) {
 
 TEST(PlanarTest, ConvexCocircularPolygon) {
   for (int n : {3, 4, 5, 12, 100, 1000}) {
-    const Result r = Triangulate({RegularPolygon(n), {}, {}});
+    const Result r = Triangulate({RegularPolygon(n), {}, {}, {}, {}});
     ExpectValidDisk(r);
     EXPECT_TRUE(r.planar);
     EXPECT_EQ(r.space_used, SpaceUsed::kPlanarDelaunay2d);
@@ -74,7 +74,7 @@ TEST(PlanarTest, ConvexCocircularPolygon) {
 TEST(PlanarTest, NonConvexPolygons) {
   for (const auto& v : {Star(7), Star(50), Comb(3), Comb(40)}) {
     for (bool bi : {false, true}) {
-      Problem p{v, {}, {}};
+      Problem p{v, {}, {}, {}, {}};
       p.weights[bi ? Metric::kSquaredDihedral : Metric::kPerimeter] = 1;
       const Result r = Triangulate(p);
       ExpectValidDisk(r);
@@ -88,7 +88,7 @@ TEST(PlanarTest, TiltedAndNoisyPlanesStayPlanar) {
   std::uniform_real_distribution<double> noise(-1e-9, 1e-9);
   for (auto v : {Tilt(Star(9)), Tilt(Comb(10)), Tilt(RegularPolygon(64))}) {
     for (Vec3& p : v) p.z += noise(rng);
-    const Result r = Triangulate({v, {}, {}});
+    const Result r = Triangulate({v, {}, {}, {}, {}});
     ExpectValidDisk(r);
     EXPECT_TRUE(r.planar);
     EXPECT_EQ(r.space_used, SpaceUsed::kPlanarDelaunay2d);
@@ -108,7 +108,7 @@ TEST(PlanarTest, ExactlyPlanarIsPlanarAtZeroTolerance) {
   for (DelaunayBackend b : {DelaunayBackend::kCgal, DelaunayBackend::kTetgen}) {
     if (b == DelaunayBackend::kTetgen && !TetgenAvailable()) continue;
     exact.delaunay = b;
-    const Result r = Triangulate({quad, {}, {}}, exact);
+    const Result r = Triangulate({quad, {}, {}, {}, {}}, exact);
     ExpectValidDisk(r);
     EXPECT_TRUE(r.planar);
     EXPECT_EQ(r.space_used, SpaceUsed::kPlanarDelaunay2d);
@@ -116,7 +116,7 @@ TEST(PlanarTest, ExactlyPlanarIsPlanarAtZeroTolerance) {
   // Exactly collinear: refused as such (it was "coplanar", from CGAL).
   const std::vector<Vec3> line = {
       {1, 2, 3}, {4, 7, 10}, {7, 12, 17}, {10, 17, 24}};
-  const Result r = Triangulate({line, {}, {}}, exact);
+  const Result r = Triangulate({line, {}, {}, {}, {}}, exact);
   EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(r.status.message.find("collinear"), std::string::npos)
       << r.status.message;
@@ -125,7 +125,7 @@ TEST(PlanarTest, ExactlyPlanarIsPlanarAtZeroTolerance) {
 TEST(PlanarTest, SelfIntersectingPlanarPolygonIsRejected) {
   // A bow tie: edges 1-2 and 3-0 cross.
   const std::vector<Vec3> bowtie = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
-  const Result r = Triangulate({bowtie, {}, {}});
+  const Result r = Triangulate({bowtie, {}, {}, {}, {}});
   EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(r.status.message.find("self-intersecting: edge 0-1 meets edge 2-3"),
             std::string::npos)
@@ -133,7 +133,7 @@ TEST(PlanarTest, SelfIntersectingPlanarPolygonIsRejected) {
   // A polygon touching itself at a vertex.
   const std::vector<Vec3> touching = {
       {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {1, 0, 0}, {0, 2, 0}};
-  EXPECT_EQ(Triangulate({touching, {}, {}}).status.code,
+  EXPECT_EQ(Triangulate({touching, {}, {}, {}, {}}).status.code,
             StatusCode::kInvalidArgument);
 }
 

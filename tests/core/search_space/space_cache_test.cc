@@ -36,7 +36,7 @@ TEST(SpaceCacheTest, ResolveWithNewWeightsIsServedAndExact) {
   SpaceCache cache(64 << 20);
   Control control;
   control.space_cache = &cache;
-  Problem p{MakeCurve(Curve::kMobius, 400), {}, Mix(1, 0)};
+  Problem p{MakeCurve(Curve::kMobius, 400), {}, Mix(1, 0), {}, {}};
   const Result first = Triangulate(p, {}, control);
   ASSERT_TRUE(first.status.ok()) << first.status.message;
   EXPECT_FALSE(first.stats.cache_hit);
@@ -65,7 +65,8 @@ TEST(SpaceCacheTest, EdgeProtectedHoleKeepsItsInsertedVertices) {
   control.space_cache = &cache;
   Options o;
   o.protect_edges = true;
-  Problem p{hole.boundary.vertices, hole.boundary.normals, Mix(1, 0, 0.2)};
+  Problem p{
+      hole.boundary.vertices, hole.boundary.normals, Mix(1, 0, 0.2), {}, {}};
   ASSERT_TRUE(Triangulate(p, o, control).status.ok());
   p.weights = Mix(0.5, 1, 0.1);
   const Result again = Triangulate(p, o, control);
@@ -80,7 +81,7 @@ TEST(SpaceCacheTest, AnythingThatShapesTheSpaceMisses) {
   SpaceCache cache(64 << 20);
   Control control;
   control.space_cache = &cache;
-  const Problem p{MakeCurve(Curve::kSpiral, 200), {}, Mix(1, 0)};
+  const Problem p{MakeCurve(Curve::kSpiral, 200), {}, Mix(1, 0), {}, {}};
   ASSERT_FALSE(Triangulate(p, {}, control).stats.cache_hit);
 
   Problem moved = p;
@@ -110,15 +111,15 @@ TEST(SpaceCacheTest, StaysWithinItsBytesEvictingLeastRecentlyUsed) {
   Control probe;
   SpaceCache sizing(int64_t{1} << 30);
   probe.space_cache = &sizing;
-  const Problem a{MakeCurve(Curve::kMonkey, 300), {}, {}};
+  const Problem a{MakeCurve(Curve::kMonkey, 300), {}, {}, {}, {}};
   ASSERT_TRUE(Triangulate(a, {}, probe).status.ok());
   const int64_t one = sizing.counters().bytes;
 
   SpaceCache cache(2 * one + one / 2);  // room for two such entries
   Control control;
   control.space_cache = &cache;
-  const Problem b{MakeCurve(Curve::kMonkey, 301), {}, {}};
-  const Problem c{MakeCurve(Curve::kMonkey, 299), {}, {}};
+  const Problem b{MakeCurve(Curve::kMonkey, 301), {}, {}, {}, {}};
+  const Problem c{MakeCurve(Curve::kMonkey, 299), {}, {}, {}, {}};
   Triangulate(a, {}, control);
   Triangulate(b, {}, control);
   EXPECT_TRUE(Triangulate(a, {}, control).stats.cache_hit);  // a is recent
@@ -142,7 +143,9 @@ TEST(SpaceCacheTest, ConcurrentSolvesShareItSafely) {
   for (int i = 0; i < 12; ++i) {
     problems.push_back({MakeCurve(kPaperCurves[i % 5], 150 + 10 * (i % 3)),
                         {},
-                        Mix(i % 2, (i + 1) % 2)});
+                        Mix(i % 2, (i + 1) % 2),
+                        {},
+                        {}});
     expected.push_back(Triangulate(problems.back()));
   }
   std::vector<std::vector<Result>> got(4);

@@ -244,7 +244,7 @@ TEST(OptimalityTest, AutoFallsBackToAllWhenNoDelaunayTriangulation) {
 
 TEST(OptimalityTest, SameInputSameTriangles) {
   const std::vector<Vec3> v = MakeCurve(Curve::kMonkey, 300);
-  Problem p{v, {}, {}};
+  Problem p{v, {}, {}, {}, {}};
   p.weights[Metric::kSquaredDihedral] = 1;
   const Result a = Triangulate(p), b = Triangulate(p);
   ASSERT_TRUE(a.status.ok()) << a.status.message;
