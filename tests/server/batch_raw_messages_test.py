@@ -11,12 +11,11 @@ place in the stream, the second its mesh and summary, the stream OK.
 Usage: batch_raw_messages_test.py PATH/TO/dot-server
 """
 import struct
-import subprocess
 import sys
 
 import grpc
 
-from raw_wire import field, free_port
+from raw_wire import field, start_server
 
 
 def request(request_id, points):
@@ -26,12 +25,8 @@ def request(request_id, points):
 
 
 def main():
-    port = free_port()
-    server = subprocess.Popen([sys.argv[1], "--listen", f"127.0.0.1:{port}",
-                               "--metrics-port", "0", "--log-level", "warn"])
+    server, channel = start_server(sys.argv[1])
     try:
-        channel = grpc.insecure_channel(f"127.0.0.1:{port}")
-        grpc.channel_ready_future(channel).result(timeout=20)
         call = channel.stream_stream(
             "/dot.v1.Triangulator/TriangulateBatch",
             request_serializer=lambda b: b,

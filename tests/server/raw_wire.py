@@ -26,3 +26,18 @@ def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def start_server(server_path, *flags):
+    """A dot-server on a free loopback port (metrics off) and a ready
+    channel to it."""
+    import subprocess
+
+    import grpc
+    port = free_port()
+    server = subprocess.Popen([server_path, "--listen", f"127.0.0.1:{port}",
+                               "--metrics-port", "0", "--log-level", "warn",
+                               *flags])
+    channel = grpc.insecure_channel(f"127.0.0.1:{port}")
+    grpc.channel_ready_future(channel).result(timeout=20)
+    return server, channel

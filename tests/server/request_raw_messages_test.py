@@ -11,23 +11,18 @@ then still answer a good request.
 
 Usage: request_raw_messages_test.py PATH/TO/dot-server
 """
-import subprocess
 import sys
 
 import grpc
 
-from raw_wire import free_port
+from raw_wire import start_server
 
 BAD = b"\xff\xff\xff"
 
 
 def main():
-    port = free_port()
-    server = subprocess.Popen([sys.argv[1], "--listen", f"127.0.0.1:{port}",
-                               "--metrics-port", "0", "--log-level", "warn"])
+    server, channel = start_server(sys.argv[1])
     try:
-        channel = grpc.insecure_channel(f"127.0.0.1:{port}")
-        grpc.channel_ready_future(channel).result(timeout=20)
         raw = {"request_serializer": lambda b: b,
                "response_deserializer": lambda b: b}
         cases = [

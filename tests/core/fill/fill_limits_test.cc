@@ -55,8 +55,7 @@ TEST(FillLimitsTest, AnyFiniteScaleIsFilledAndFairedWithoutNaN) {
     for (const Vec3& p : r.mesh.vertices) {
       ASSERT_TRUE(IsFinite(p)) << "scale " << scale;
     }
-    EXPECT_EQ(r.report.filled, 2) << scale << ": "
-                                  << r.report.holes[0].reason;
+    EXPECT_EQ(r.report.filled, 2) << scale << ": " << r.report.holes[0].reason;
     int faired = 0;
     for (const HoleReport& h : r.report.holes) faired += h.faired;
     EXPECT_GT(faired, 0) << "scale " << scale;
