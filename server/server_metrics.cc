@@ -5,31 +5,37 @@
 #include <civetweb.h>
 #include <prometheus/text_serializer.h>
 
+#include <memory>
 #include <string>
 #include <string_view>
 
 namespace dot::server {
 namespace {
 
-// Debian's civetweb 1.15 runs each request on a 100 KB thread stack, and its
-// own answer to a request no handler takes (404 for `GET /`, 405 for `HEAD
-// /metrics`, ...) overflows that stack: one `curl -I` was a SIGSEGV of the
-// whole server. So every request is answered here, before civetweb's
-// dispatch, and only `GET /metrics` goes on to prometheus-cpp's handler.
-int AnswerAllButGetMetrics(mg_connection* conn) {
+// Debian's civetweb 1.15 runs each request on a 100 KB thread stack, and
+// both its own answers (404 for `GET /`, 405 for `HEAD /metrics`) and
+// prometheus-cpp's handler format with mg_printf, whose vsnprintf overflows
+// that stack (a `curl -I` was a SIGSEGV of the whole server; under
+// AddressSanitizer even `GET /metrics` was). So the endpoint is a bare
+// CivetServer and every request is answered here, before civetweb's
+// dispatch: the answer is assembled in a std::string and sent with
+// mg_write, nothing is formatted on civetweb's stack.
+int Answer(mg_connection* conn) {
   const mg_request_info* info = mg_get_request_info(conn);
   const std::string_view method =
       info && info->request_method ? info->request_method : "";
   const std::string_view uri = info && info->local_uri ? info->local_uri : "";
   const bool read = method == "GET" || method == "HEAD";
-  if (uri == "/metrics" && method == "GET") return 0;
   int status = 200;
   const char* reason = "OK";
   const char* type = "text/plain; charset=utf-8";
-  std::string_view body;
+  std::string body;
   const char* allow = "";
-  if (uri == "/metrics" && method == "HEAD") {
+  if (uri == "/metrics" && read) {
     type = "text/plain; version=0.0.4; charset=utf-8";
+    const auto* server = static_cast<const CivetServer*>(info->user_data);
+    body =
+        static_cast<const ServerMetrics*>(server->getUserContext())->Scrape();
   } else if (uri == "/" && read) {
     type = "text/html; charset=utf-8";
     body =
@@ -45,8 +51,6 @@ int AnswerAllButGetMetrics(mg_connection* conn) {
     reason = "Not Found";
     body = "not found: the metrics are at /metrics\n";
   }
-  // Assembled here and written with mg_write: civetweb's mg_printf formats
-  // on the same small stack (it overflowed under AddressSanitizer).
   std::string answer = "HTTP/1.1 " + std::to_string(status) + " " + reason +
                        "\r\nContent-Type: " + type +
                        "\r\nContent-Length: " + std::to_string(body.size()) +
@@ -107,21 +111,23 @@ ServerMetrics::ServerMetrics(const MetricsOptions& options)
     // is silent for `request_timeout_ms`, and no keep-alive: slow or idle
     // scrapers cannot hold the endpoint (the gRPC port is separate).
     CivetCallbacks callbacks{};
-    callbacks.begin_request = AnswerAllButGetMetrics;
+    callbacks.begin_request = Answer;
     // civetweb writes an IPv6 address in brackets.
     const std::string host = options.bind.find(':') == std::string::npos
                                  ? options.bind
                                  : "[" + options.bind + "]";
-    exposer_ = std::make_unique<prometheus::Exposer>(
+    http_ = std::make_unique<CivetServer>(
         std::vector<std::string>{
             "listening_ports", host + ":" + std::to_string(options.port),
             "num_threads", std::to_string(options.threads),
             "request_timeout_ms", std::to_string(options.request_timeout_ms),
             "enable_keep_alive", "no"},
-        &callbacks);
-    exposer_->RegisterCollectable(registry_);
+        &callbacks, this);
   }
 }
+
+// The HTTP threads stop before the registry they read goes.
+ServerMetrics::~ServerMetrics() { http_.reset(); }
 
 bool MetricsSupportIpv6() { return mg_check_feature(8) != 0; }
 

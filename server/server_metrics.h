@@ -5,7 +5,6 @@
 #define DOT_SERVER_SERVER_METRICS_H_
 
 #include <prometheus/counter.h>
-#include <prometheus/exposer.h>
 #include <prometheus/gauge.h>
 #include <prometheus/histogram.h>
 #include <prometheus/registry.h>
@@ -15,6 +14,8 @@
 #include <string>
 
 #include "dot/space_cache.h"
+
+class CivetServer;
 
 namespace dot::server {
 
@@ -36,6 +37,7 @@ bool MetricsSupportIpv6();
 
 class ServerMetrics {
  public:
+  ~ServerMetrics();
   // Exposes /metrics on bind:port unless port is 0; throws when it cannot.
   explicit ServerMetrics(const MetricsOptions& options);
 
@@ -55,7 +57,7 @@ class ServerMetrics {
 
  private:
   std::shared_ptr<prometheus::Registry> registry_;
-  std::unique_ptr<prometheus::Exposer> exposer_;
+  std::unique_ptr<CivetServer> http_;  // after registry_: stops first
   prometheus::Family<prometheus::Counter>* requests_;
   prometheus::Family<prometheus::Counter>* stopped_;
   prometheus::Family<prometheus::Histogram>* latency_;
