@@ -62,6 +62,22 @@ void Add(CLI::App& app, const std::string& name, T* value,
   app.add_option(name, *value, help)->envname(env)->capture_default_str();
 }
 
+// A file flag that, once given, must name a file: an empty --tls-cert
+// (e.g. from an unset variable in a script) would otherwise mean "no TLS"
+// and start a plaintext server. (CLI11 skips an empty environment
+// variable: unset and empty mean the same there.)
+void AddPath(CLI::App& app, const std::string& name, std::string* value,
+             const std::string& env, const std::string& help) {
+  app.add_option(name, *value, help)
+      ->envname(env)
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            return path.empty() ? "is empty: name a file, or leave the flag out"
+                                : "";
+          },
+          "", "path"));
+}
+
 // An integer flag: refused, naming its environment variable, unless it is
 // a whole number from `min` (0 by default: counts are never negative).
 template <typename T>
@@ -158,17 +174,19 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   Add(app, "--helper-path", &c->helpers.executable, "DOT_HELPER_PATH",
       "dot-delaunay-helper binary (default: next to dot-server)");
   AddSize(app, "--helper-memory-mb", 20, &c->helpers.memory_limit_bytes,
-          "DOT_HELPER_MEMORY_MB", "address-space limit of each helper process");
+          "DOT_HELPER_MEMORY_MB",
+          "address-space limit of each helper process (0: no limit)");
   AddInt(app, "--metrics-port", &c->metrics.port, "DOT_METRICS_PORT",
          "Prometheus /metrics HTTP port (0: off)", 0, 65535);
   Add(app, "--metrics-bind", &c->metrics.bind, "DOT_METRICS_BIND",
       "IPv4 or IPv6 address the metrics endpoint binds");
-  Add(app, "--tls-cert", &c->tls.cert, "DOT_TLS_CERT",
-      "PEM server certificate (enables TLS)");
-  Add(app, "--tls-key", &c->tls.key, "DOT_TLS_KEY", "PEM server private key");
-  Add(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
-      "PEM CA bundle; when set, clients must present a certificate it "
-      "signed (mutual TLS)");
+  AddPath(app, "--tls-cert", &c->tls.cert, "DOT_TLS_CERT",
+          "PEM server certificate (enables TLS)");
+  AddPath(app, "--tls-key", &c->tls.key, "DOT_TLS_KEY",
+          "PEM server private key");
+  AddPath(app, "--tls-client-ca", &c->tls.client_ca, "DOT_TLS_CLIENT_CA",
+          "PEM CA bundle; when set, clients must present a certificate it "
+          "signed (mutual TLS)");
   app.add_flag("--exit-with-stdin", c->exit_with_stdin,
                "drain and exit when stdin reaches end of file (for a parent "
                "that holds a pipe to it: the server ends with the parent)");

@@ -53,5 +53,23 @@ TEST(ConfigTest, MetricsBindMustBeAnAddressTheEndpointCanBind) {
   }
 }
 
+TEST(ConfigTest, EmptyTlsFilesAreRefusedNotReadAsPlaintext) {
+  // Before: `--tls-cert '' --tls-key ''` started a plaintext server.
+  for (const char* flag : {"--tls-cert", "--tls-key", "--tls-client-ca"}) {
+    CLI::App app;
+    ServerConfig c;
+    AddServerFlags(app, &c);
+    try {
+      app.parse(std::vector<std::string>{"", flag});  // reversed: last first
+      ADD_FAILURE() << flag << " '' was accepted";
+    } catch (const CLI::ValidationError& e) {
+      EXPECT_NE(std::string(e.what()).find("is empty"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find(flag), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace dot::server

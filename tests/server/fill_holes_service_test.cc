@@ -242,6 +242,27 @@ TEST(FillHolesServiceTest, LargeFairingSystemsAreSolvedInAHelper) {
   }
 }
 
+TEST(FillHolesServiceTest, HelperOutOfMemoryIsReportedAsSuch) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ASan builds cannot cap a helper's address space";
+#endif
+  // Before: a fairing solve over the helpers' memory cap was reported as
+  // "the helper answered 0 values for a solution of ..." (the reply was
+  // read before its status).
+  auto config = LoopbackConfig();
+  config.helpers.count = 1;
+  config.helpers.memory_limit_bytes = int64_t{20} << 20;
+  auto s = StartServer(config);
+  const MeshData m = testing::SphereWithCapCut(120, 240, 0.6);
+  const auto remote = client::FillRemote(*s.stub, "cap", {}, ToSoup(m), 60);
+  ASSERT_TRUE(remote.status.ok()) << remote.status.error_message();
+  ASSERT_EQ(remote.report.holes_size(), 1);
+  EXPECT_FALSE(remote.report.holes(0).faired());
+  EXPECT_NE(remote.report.holes(0).reason().find("out of memory"),
+            std::string::npos)
+      << remote.report.holes(0).reason();
+}
+
 TEST(FillHolesServiceTest, FillMemoryIsChargedAsTheMeshArrives) {
   // Before: uploads were charged to no budget (70 streams that never
   // half-closed took a server from 72 MB to 5.2 GB).

@@ -27,6 +27,7 @@ import urllib.request
 
 import grpc
 
+import raw_wire
 from raw_wire import field, free_port, varint
 
 
@@ -41,12 +42,8 @@ def first_message(request_id, time_budget_ms=0):
 
 
 def start(server_path, *flags, metrics_port=0):
-    port = free_port()
-    server = subprocess.Popen([server_path, "--listen", f"127.0.0.1:{port}",
-                               "--metrics-port", str(metrics_port),
-                               "--log-level", "warn", *flags])
-    channel = grpc.insecure_channel(f"127.0.0.1:{port}")
-    grpc.channel_ready_future(channel).result(timeout=20)
+    server, channel = raw_wire.start_server(server_path, *flags,
+                                            metrics_port=metrics_port)
     call = channel.stream_stream("/dot.v1.Triangulator/FillHoles",
                                  request_serializer=lambda b: b,
                                  response_deserializer=lambda b: b)

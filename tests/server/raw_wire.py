@@ -28,16 +28,16 @@ def free_port():
         return s.getsockname()[1]
 
 
-def start_server(server_path, *flags):
-    """A dot-server on a free loopback port (metrics off) and a ready
-    channel to it."""
+def start_server(server_path, *flags, metrics_port=0):
+    """A dot-server on a free loopback port (metrics on `metrics_port`, off
+    by default) and a ready channel to it."""
     import subprocess
 
     import grpc
     port = free_port()
     server = subprocess.Popen([server_path, "--listen", f"127.0.0.1:{port}",
-                               "--metrics-port", "0", "--log-level", "warn",
-                               *flags])
+                               "--metrics-port", str(metrics_port),
+                               "--log-level", "warn", *flags])
     channel = grpc.insecure_channel(f"127.0.0.1:{port}")
     grpc.channel_ready_future(channel).result(timeout=20)
     return server, channel

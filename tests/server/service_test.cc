@@ -613,6 +613,42 @@ TEST(ServiceTest, HelperMemoryCapFailsOnlyTheBigRequest) {
   ExpectSameAsLocal(small, TriangulateRemote(*s.stub, small, Input(small), 30));
 }
 
+TEST(ServiceTest, HelperThatCannotHoldItsInputSaysSo) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ASan builds cannot cap a helper's address space";
+#endif
+  // Before: the helper died on an uncaught bad_alloc (SIGABRT, reported as
+  // a crash on this input) or was left with the request half read.
+  auto config = testing::LoopbackConfig();
+  config.helpers.count = 1;
+  config.helpers.memory_limit_bytes = int64_t{20} << 20;
+  auto s = StartServer(config);
+  std::vector<Vec3> points(2'000'000);  // 48 MB
+  for (size_t i = 0; i < points.size(); ++i) {
+    points[i] = {double(i % 1000), double(i / 1000 % 1000), double(i % 7)};
+  }
+  Tetrahedralization out;
+  const Status st = s.server->helpers()->Tetrahedralize(
+      points, &out, nullptr,
+      std::chrono::steady_clock::now() + std::chrono::seconds(60), 0);
+  EXPECT_EQ(st.code, StatusCode::kResourceExhausted) << st.message;
+  EXPECT_NE(st.message.find("ran out of memory holding its input"),
+            std::string::npos)
+      << st.message;
+  EXPECT_NE(st.message.find("--helper-memory-mb"), std::string::npos)
+      << st.message;
+  // The next request gets a fresh helper.
+  const std::vector<Vec3> cube = {
+      {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  const Status next = s.server->helpers()->Tetrahedralize(
+      cube, &out, nullptr,
+      std::chrono::steady_clock::now() + std::chrono::seconds(60), 0);
+  if (TetgenAvailable()) {
+    EXPECT_TRUE(next.ok()) << next.message;
+    EXPECT_FALSE(out.tets.empty());
+  }
+}
+
 TEST(ServiceTest, ConcurrentResultsEqualSequentialOnes) {
   auto config = testing::LoopbackConfig();
   config.pool.threads = 4;

@@ -52,10 +52,15 @@ Status SolveSparseLu(const SparseSystem& system, std::vector<double>* x) {
 FairSolver::FairSolver(const Control& control, RunTicker* ticker)
     : control_(control), ticker_(ticker), state_(std::make_shared<State>()) {}
 
+bool FairSolver::Stop(const Status& why) {
+  state_->stop = why;
+  return false;
+}
+
 bool FairSolver::factor(const Matrix& a, NT& d) {
   d = 1;  // Eigen has no homogeneous coordinate
   State& s = *state_;
-  if (!ticker_->Poll()) return !(s.stopped = true);
+  if (!ticker_->Poll()) return Stop(ticker_->status());
   s.a = &a.eigen_object();
   s.in_process =
       !control_.solve_sparse || s.a->rows() <= kSolveSparseMinUnknowns;
@@ -66,7 +71,7 @@ bool FairSolver::factor(const Matrix& a, NT& d) {
 
 bool FairSolver::linear_solver(const Vector& b, Vector& x) {
   State& s = *state_;
-  if (!ticker_->Poll()) return !(s.stopped = true);
+  if (!ticker_->Poll()) return Stop(ticker_->status());
   if (s.in_process) {
     x = s.lu.solve(b);
     return s.lu.info() == Eigen::Success;
@@ -96,10 +101,13 @@ bool FairSolver::SolveDeferred() {
   }
   std::vector<double> x;
   const Status status = control_.solve_sparse(system, &x);
+  // The hook's own stop names the solve (the ticker, polled after it,
+  // would not see a deadline the hook met first).
   if (status.code == StatusCode::kCancelled ||
-      status.code == StatusCode::kDeadlineExceeded || !ticker_->Poll()) {
-    return !(s.stopped = true);
+      status.code == StatusCode::kDeadlineExceeded) {
+    return Stop(status);
   }
+  if (!ticker_->Poll()) return Stop(ticker_->status());
   if (!status.ok()) {
     s.error = status.message;
     return false;

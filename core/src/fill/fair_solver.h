@@ -35,8 +35,10 @@ class FairSolver {
   bool factor(const Matrix& a, NT& d);
   bool linear_solver(const Vector& b, Vector& x);
 
-  // Whether the last false came from the ticker (cancel or deadline).
-  bool stopped() const { return state_->stopped; }
+  // Whether the last false was a stop (cancel or deadline, seen by the
+  // ticker or by solve_sparse), and its status, which names where.
+  bool stopped() const { return !state_->stop.ok(); }
+  const Status& stop_status() const { return state_->stop; }
   // Why solve_sparse failed, when it did (empty otherwise).
   const std::string& error() const { return state_->error; }
 
@@ -50,10 +52,11 @@ class FairSolver {
     // Deferred right-hand sides and where their solutions go (see .cc).
     std::vector<const Vector*> b;
     std::vector<Vector*> x;
-    bool stopped = false;
+    Status stop;  // not OK once stopped
     std::string error;
   };
   bool SolveDeferred();
+  bool Stop(const Status& why);  // records why; returns false for CGAL
 
   const Control& control_;
   RunTicker* ticker_;

@@ -258,7 +258,7 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
         CGAL::parameters::fairing_continuity(options.fairing_continuity)
             .sparse_linear_solver(solver));
     report->fair_ms = MsSince(t0);
-    if (solver.stopped()) return ticker.status();
+    if (solver.stopped()) return solver.stop_status();
     if (!report->faired) {
       report->reason = "fairing failed (" +
                        (solver.error().empty() ? std::string("singular system")

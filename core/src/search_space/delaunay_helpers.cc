@@ -106,6 +106,10 @@ bool WriteReply(int fd, const Status& s, uint64_t count,
   return true;
 }
 
+// The helper's exit code when it cannot hold a request's input: it ends,
+// since the rest of the request is unread (the server reports it).
+constexpr int kExitInputOutOfMemory = 3;
+
 Status OutOfMemory(const std::string& what) {
   return MakeStatus(StatusCode::kResourceExhausted,
                     what + " ran out of memory");
@@ -114,12 +118,17 @@ Status OutOfMemory(const std::string& what) {
 bool ServeTetrahedralize(int in_fd, int out_fd, uint64_t budget) {
   uint64_t n = 0;
   if (!ReadAll(in_fd, &n, sizeof n)) return false;
-  std::vector<Vec3> points(n);
-  if (!ReadAll(in_fd, points.data(), n * sizeof(Vec3))) return false;
   Tetrahedralization t;
   Status s;
   {
     const GrowthLimit limit(budget);
+    std::vector<Vec3> points;
+    try {
+      points.resize(n);
+    } catch (const std::bad_alloc&) {
+      std::_Exit(kExitInputOutOfMemory);  // the request is unread: end
+    }
+    if (!ReadAll(in_fd, points.data(), n * sizeof(Vec3))) return false;
     try {
       s = TetgenTetrahedralize(points, &t);
     } catch (const std::bad_alloc&) {  // copying TetGen's output
@@ -143,20 +152,24 @@ bool ServeSolveSparse(int in_fd, int out_fd, uint64_t budget) {
   std::vector<double> x;
   Status s;
   const GrowthLimit limit(budget);
+  SparseSystem system;
+  system.n = static_cast<int64_t>(n);
+  system.rhs = rhs;
   try {
-    SparseSystem system;
-    system.n = static_cast<int64_t>(n);
-    system.rhs = rhs;
     system.rows.resize(nonzeros);
     system.cols.resize(nonzeros);
     system.values.resize(nonzeros);
     system.b.resize(n * static_cast<uint64_t>(rhs));
-    if (!ReadAll(in_fd, system.rows.data(), nonzeros * sizeof(int32_t)) ||
-        !ReadAll(in_fd, system.cols.data(), nonzeros * sizeof(int32_t)) ||
-        !ReadAll(in_fd, system.values.data(), nonzeros * sizeof(double)) ||
-        !ReadAll(in_fd, system.b.data(), system.b.size() * sizeof(double))) {
-      return false;
-    }
+  } catch (const std::bad_alloc&) {
+    std::_Exit(kExitInputOutOfMemory);  // the request is unread: end
+  }
+  if (!ReadAll(in_fd, system.rows.data(), nonzeros * sizeof(int32_t)) ||
+      !ReadAll(in_fd, system.cols.data(), nonzeros * sizeof(int32_t)) ||
+      !ReadAll(in_fd, system.values.data(), nonzeros * sizeof(double)) ||
+      !ReadAll(in_fd, system.b.data(), system.b.size() * sizeof(double))) {
+    return false;
+  }
+  try {
     s = SolveSparseLu(system, &x);
   } catch (const std::bad_alloc&) {
     x = {};
@@ -377,9 +390,22 @@ Status DelaunayHelperPool::Call(HelperRequest kind, const std::string& what,
     s = Exchange(h, kind, what, item_bytes, send, receive, cancel, deadline,
                  memory_budget_bytes);
   }
-  if (s.code == StatusCode::kResourceExhausted && memory_budget_bytes > 0) {
-    s.message += " (the request's memory budget is " +
-                 std::to_string(memory_budget_bytes >> 20) + " MiB)";
+  if (s.code == StatusCode::kResourceExhausted) {
+    // Either limit may have been the one hit: name both.
+    std::vector<std::string> limits;
+    if (memory_budget_bytes > 0) {
+      limits.push_back("the request's memory budget is " +
+                       std::to_string(memory_budget_bytes >> 20) + " MiB");
+    }
+    if (config_.memory_limit_bytes > 0) {
+      limits.push_back("a helper process may map " +
+                       std::to_string(config_.memory_limit_bytes >> 20) +
+                       " MiB (--helper-memory-mb)");
+    }
+    for (size_t i = 0; i < limits.size(); ++i) {
+      s.message += (i == 0 ? " (" : "; ") + limits[i];
+    }
+    if (!limits.empty()) s.message += ")";
   }
   {
     std::lock_guard<std::mutex> lock(mu_);
@@ -411,6 +437,11 @@ Status DelaunayHelperPool::Exchange(Helper* h, HelperRequest kind,
                       " (" + why + ") and was restarted");
     }
     std::string how;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kExitInputOutOfMemory) {
+      return MakeStatus(StatusCode::kResourceExhausted,
+                        "the helper process running " + what +
+                            " ran out of memory holding its input");
+    }
     if (WIFEXITED(status)) {
       // (A sanitizer build's helper turns a crash into an exit code.)
       how = "exited with code " + std::to_string(WEXITSTATUS(status)) +
@@ -469,6 +500,8 @@ Status DelaunayHelperPool::Exchange(Helper* h, HelperRequest kind,
   if (s.ok()) s = read(message.data(), len);
   if (s.ok()) s = read(&count, sizeof count);
   if (!s.ok()) return s;
+  // A refusal carries no items (WriteReply): its status is the answer.
+  if (code != 0) return MakeStatus(static_cast<StatusCode>(code), message);
   const uint64_t reply_bytes = count * item_bytes;
   if (budget > 0 && reply_bytes > budget) {
     Kill(h);  // the rest of its reply is not read
@@ -477,10 +510,7 @@ Status DelaunayHelperPool::Exchange(Helper* h, HelperRequest kind,
                           std::to_string(reply_bytes >> 20) +
                           " MiB, over the budget");
   }
-  s = receive(count, read);
-  if (!s.ok()) return s;
-  if (code != 0) return MakeStatus(static_cast<StatusCode>(code), message);
-  return OkStatus();
+  return receive(count, read);
 }
 
 }  // namespace dot

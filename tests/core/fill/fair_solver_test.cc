@@ -120,5 +120,22 @@ TEST(SolveSparseLuTest, SolvesSeveralRightHandSidesAndRefusesSingularOnes) {
   EXPECT_EQ(SolveSparseLu(s, &x).code, StatusCode::kInvalidArgument);
 }
 
+TEST(FairSolverTest, AStopInsideTheHookIsReportedAsTheSolvesOwn) {
+  // Before: a deadline the helper met first was not seen by the ticker
+  // (polled only after a hook that answered OK); the fill went on and the
+  // stop was reported "during the intersection check", or not at all.
+  const MeshData m = BigHole();
+  Control control;
+  control.solve_sparse = [](const SparseSystem&, std::vector<double>*) {
+    return MakeStatus(StatusCode::kDeadlineExceeded,
+                      "deadline exceeded during the sparse solve");
+  };
+  const FillResult r = FillHoles(m, FillOptions{}, control);
+  EXPECT_EQ(r.status.code, StatusCode::kDeadlineExceeded) << r.status.message;
+  EXPECT_NE(r.status.message.find("the sparse solve"), std::string::npos)
+      << r.status.message;
+  EXPECT_TRUE(r.mesh.triangles.empty());
+}
+
 }  // namespace
 }  // namespace dot
