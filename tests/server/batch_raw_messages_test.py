@@ -13,8 +13,6 @@ Usage: batch_raw_messages_test.py PATH/TO/dot-server
 import struct
 import sys
 
-import grpc
-
 from raw_wire import field, start_server
 
 

@@ -16,10 +16,8 @@ Raw bytes to a real dot-server on loopback, each case a defect once seen:
 
 Usage: fill_raw_messages_test.py PATH/TO/dot-server
 """
-import re
 import signal
 import struct
-import subprocess
 import sys
 import threading
 import time
