@@ -271,7 +271,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       return;
     }
     if (f.local) {
-      o = FillLocal(f.input, f.ToWire(), soup);
+      o = FillLocal(f.input, f.ToWire(), std::move(soup));
     } else {
       auto channel = ChannelOrReport(ctx);
       if (!channel) return;

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <sstream>
+#include <utility>
 
 #include "remote_call.h"
 #include "wire/fill_wire.h"
@@ -25,33 +26,28 @@ constexpr size_t kRequestBytes = 1 << 20;
 }  // namespace
 
 FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
-                      const PolygonSoup& soup) {
+                      PolygonSoup soup) {
   const auto t0 = Clock::now();
   FillOutcome out;
   FillOptions options;
-  Status s = wire::FillOptionsFromWire(wire_options, &options);
+  const Status s = wire::FillOptionsFromWire(wire_options, &options);
+  if (!s.ok()) {
+    out.status = wire::ToGrpcStatus(s);
+    return out;
+  }
   // The request's time budget holds here as on a server.
   Control control;
   if (wire_options.time_budget_ms() > 0) {
     control.deadline =
         t0 + std::chrono::milliseconds(wire_options.time_budget_ms());
   }
-  MeshData mesh;
-  RepairReport repair;
-  if (s.ok()) {
-    s = wire_options.no_repair() ? TriangulateSoup(soup, control, &mesh)
-                                 : RepairMesh(soup, control, &mesh, &repair);
-  }
-  if (!s.ok()) {
-    out.status = wire::ToGrpcStatus(s);
-    return out;
-  }
-  FillResult r = FillHoles(mesh, options, control);
-  out.status = wire::ToGrpcStatus(r.status);
-  if (r.status.ok()) {
-    wire::FillReportToWire(r.report, repair, mesh.vertices.size(),
-                           mesh.triangles.size(), &out.report);
-    out.mesh = std::move(r.mesh);
+  SoupFillResult r = FillSoup(std::move(soup), options, control);
+  out.status = wire::ToGrpcStatus(r.fill.status);
+  if (r.fill.status.ok()) {
+    wire::FillReportToWire(r.fill.report, r.repair,
+                           static_cast<size_t>(r.input_vertices),
+                           static_cast<size_t>(r.input_faces), &out.report);
+    out.mesh = std::move(r.fill.mesh);
   }
   out.latency_ms = MsSince(t0);
   return out;

@@ -23,10 +23,11 @@ struct FillOutcome {
 
 using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 
-// In this process: the server's steps (repair unless options.no_repair,
-// FillHoles) with the server's defaults.
+// In this process: dot::FillSoup, the function the server runs (repair
+// unless options.no_repair, then FillHoles), with the server's defaults.
+// The soup is taken by value: move it in to hold the mesh once.
 FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
-                      const PolygonSoup& mesh);
+                      PolygonSoup mesh);
 
 FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        const v1::FillOptions& options, const PolygonSoup& mesh,

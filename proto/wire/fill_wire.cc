@@ -9,18 +9,7 @@ namespace dot::wire {
 
 Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
   *o = {};
-  if (wire.has_weights()) {
-    o->weights = FromWire(wire.weights());
-    for (Metric m : kAllMetrics) {
-      if (!std::isfinite(o->weights[m])) {
-        return InvalidArgument("weight of metric " +
-                               std::string(MetricName(m)) + " is not finite");
-      }
-    }
-    if (!HasNonZeroWeight(o->weights)) {
-      return InvalidArgument("every metric weight is zero");
-    }
-  }
+  if (wire.has_weights()) o->weights = FromWire(wire.weights());
   o->scale_free_weights = !wire.absolute_weights();
   switch (wire.stage()) {
     case v1::FILL_STAGE_TRIANGULATE:
@@ -38,28 +27,16 @@ Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
   }
   o->selection.max_edges =
       static_cast<int>(std::min<uint32_t>(wire.max_hole_edges(), INT32_MAX));
-  if (!(wire.max_hole_diameter() >= 0) ||
-      !std::isfinite(wire.max_hole_diameter())) {
-    return InvalidArgument("max_hole_diameter must be a finite number >= 0");
-  }
   o->selection.max_diameter = wire.max_hole_diameter();
   o->selection.skip_longest = wire.skip_longest();
   o->selection.ids.assign(wire.holes().begin(), wire.holes().end());
-  if (wire.density() != 0) {
-    if (!(wire.density() >= 0.1 && wire.density() <= 100)) {
-      return InvalidArgument(
-          "density must be between 0.1 and 100 (default "
-          "sqrt(2))");
-    }
-    o->density = wire.density();
-  }
+  if (wire.density() != 0) o->density = wire.density();  // 0: the default
   if (wire.has_fairing_continuity()) {
-    if (wire.fairing_continuity() < 0 || wire.fairing_continuity() > 2) {
-      return InvalidArgument("fairing_continuity must be 0, 1 or 2");
-    }
     o->fairing_continuity = wire.fairing_continuity();
   }
-  return OkStatus();
+  o->repair = !wire.no_repair();
+  // The ranges are the core's to check, one place for every caller.
+  return CheckFillOptions(*o);
 }
 
 void FillReportToWire(const FillReport& r, const RepairReport& repair,

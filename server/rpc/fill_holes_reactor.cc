@@ -99,10 +99,11 @@ grpc::Status FillHolesReactor::Accept() {
     }
     if (!refused.ok()) return refused;
     first_message_timer_.Cancel();  // the job's deadline bounds it now
-    // Options are checked before the mesh is read, not after.
-    FillOptions options;
-    const Status s = wire::FillOptionsFromWire(m.options(), &options);
+    // Options are checked before the mesh is read, not after, and once.
+    const Status s = wire::FillOptionsFromWire(m.options(), &options_);
     if (!s.ok()) return wire::ToGrpcStatus(s);
+    ApplyServerLimits(runner_->options(), m.options().memory_budget_bytes(),
+                      runner_->compute_threads(), &options_);
     SetTimer(&upload_timer_, ToSystem(job_->deadline));
     // A drain ends an unfinished upload at once (from a gRPC thread).
     runner_->SetOnDrain(job_.get(), [this] {
@@ -205,40 +206,21 @@ void FillHolesReactor::StartFill() {
 }
 
 Status FillHolesReactor::Fill(Job& job, const Control& control) {
-  FillOptions options;
-  Status s = wire::FillOptionsFromWire(reader_.options(), &options);
-  if (!s.ok()) return s;
-  // The server's solve options, a request's memory budget only lowering
-  // the server's.
-  options.triangulate = job.options;
-  options.triangulate.space = SearchSpace::kDelaunay;
-  const uint64_t asked = reader_.options().memory_budget_bytes();
-  const auto cap = static_cast<uint64_t>(job.options.memory_budget_bytes);
-  options.triangulate.memory_budget_bytes =
-      static_cast<int64_t>(asked > 0 ? std::min(asked, cap) : cap);
-  options.all_space_max_vertices = job.options.all_space_max_vertices;
-  options.threads = runner_->compute_threads();
   // What the log says if the fill stops before it has more to say.
   job.log_detail =
       "received_vertices=" + std::to_string(soup_.vertices.size()) +
       " received_faces=" + std::to_string(soup_.faces.size());
-  MeshData mesh;
-  s = reader_.options().no_repair()
-          ? TriangulateSoup(soup_, control, &mesh)
-          : RepairMesh(soup_, control, &mesh, &repair_);
-  soup_ = {};
-  if (!s.ok()) return s;
-  input_vertices_ = mesh.vertices.size();
-  input_faces_ = mesh.triangles.size();
-  result_ = FillHoles(mesh, options, control,
-                      [this](int done, int total) { OnHole(done, total); });
-  const FillReport& r = result_.report;
-  job.log_detail = "vertices=" + std::to_string(input_vertices_) +
-                   " faces=" + std::to_string(input_faces_) +
-                   " holes=" + std::to_string(r.loops) +
-                   " filled=" + std::to_string(r.filled) +
-                   " added_faces=" + std::to_string(r.added_faces);
-  return result_.status;
+  result_ = FillSoup(std::move(soup_), options_, control,
+                     [this](int done, int total) { OnHole(done, total); });
+  const FillReport& r = result_.fill.report;
+  if (result_.input_faces > 0) {
+    job.log_detail = "vertices=" + std::to_string(result_.input_vertices) +
+                     " faces=" + std::to_string(result_.input_faces) +
+                     " holes=" + std::to_string(r.loops) +
+                     " filled=" + std::to_string(r.filled) +
+                     " added_faces=" + std::to_string(r.added_faces);
+  }
+  return result_.fill.status;
 }
 
 void FillHolesReactor::OnHole(int done, int total) {
@@ -304,7 +286,7 @@ void FillHolesReactor::WriteNext() {
       FinishWith(status);
       return;
     }
-    chunks_.emplace(result_.mesh.vertices, result_.mesh.triangles, 0,
+    chunks_.emplace(result_.fill.mesh.vertices, result_.fill.mesh.triangles, 0,
                     runner_->options().chunk_bytes);
   }
   message_.Clear();
@@ -313,7 +295,9 @@ void FillHolesReactor::WriteNext() {
     Write(message_, false);
     return;
   }
-  wire::FillReportToWire(result_.report, repair_, input_vertices_, input_faces_,
+  wire::FillReportToWire(result_.fill.report, result_.repair,
+                         static_cast<size_t>(result_.input_vertices),
+                         static_cast<size_t>(result_.input_faces),
                          message_.mutable_report());
   {
     std::lock_guard<std::mutex> lock(mu_);

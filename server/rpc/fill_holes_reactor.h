@@ -73,10 +73,9 @@ class FillHolesReactor final
 
   // Input and output of the fill; touched by the compute thread only while
   // the job runs, by the reactor only before and after.
-  PolygonSoup soup_;
-  FillResult result_;
-  RepairReport repair_;
-  size_t input_vertices_ = 0, input_faces_ = 0;
+  FillOptions options_;  // from the first message, with the server's limits
+  PolygonSoup soup_;     // moved into the fill
+  SoupFillResult result_;
 
   std::mutex mu_;
   bool uploading_ = true;  // reads go on; the timers may end the call

@@ -96,10 +96,8 @@ std::shared_ptr<Job> JobRunner::Admit(
                               std::to_string(options_.max_vertices));
     return job;
   }
-  const uint64_t asked = request.options().memory_budget_bytes();
-  const auto cap = static_cast<uint64_t>(options_.solve.memory_budget_bytes);
   job->options.memory_budget_bytes =
-      static_cast<int64_t>(asked > 0 ? std::min(asked, cap) : cap);
+      RequestMemoryBudget(options_, request.options().memory_budget_bytes());
   job->options.all_space_max_vertices = options_.solve.all_space_max_vertices;
   SetDeadline(options_, request.options().time_budget_ms(), client_deadline,
               job.get());

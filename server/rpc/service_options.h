@@ -5,10 +5,12 @@
 #ifndef DOT_SERVER_RPC_SERVICE_OPTIONS_H_
 #define DOT_SERVER_RPC_SERVICE_OPTIONS_H_
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "dot/fill_holes.h"
 #include "dot/triangulate.h"
 
 namespace dot::server {
@@ -59,6 +61,31 @@ struct ServiceOptions {
   std::string source_archive = "/usr/share/dot/dot-source.tar.gz";
   std::string source_url;
 };
+
+// The one place a request's limits come from the server's: the core options
+// a request runs under are `solve`'s with its memory budget lowered to what
+// the request asked for (0 bytes: no ask), never raised.
+inline int64_t RequestMemoryBudget(const ServiceOptions& server,
+                                   uint64_t asked_bytes) {
+  const auto cap = static_cast<uint64_t>(server.solve.memory_budget_bytes);
+  return static_cast<int64_t>(asked_bytes > 0 ? std::min(asked_bytes, cap)
+                                              : cap);
+}
+
+// A FillHoles request's options under this server: each hole's Triangulate
+// runs with the server's solve options (backend, ...) over the Delaunay
+// space, with the request's memory budget (RequestMemoryBudget), the
+// server's all-triangles limit, and `threads` holes at once.
+inline void ApplyServerLimits(const ServiceOptions& server,
+                              uint64_t asked_budget_bytes, int threads,
+                              FillOptions* fill) {
+  fill->triangulate = server.solve;
+  fill->triangulate.space = SearchSpace::kDelaunay;
+  fill->triangulate.memory_budget_bytes =
+      RequestMemoryBudget(server, asked_budget_bytes);
+  fill->all_space_max_vertices = server.solve.all_space_max_vertices;
+  fill->threads = threads;
+}
 
 }  // namespace dot::server
 

@@ -6,6 +6,7 @@
 
 #include "dot/curves.h"          // IWYU pragma: export
 #include "dot/fill_holes.h"      // IWYU pragma: export
+#include "dot/fill_soup.h"       // IWYU pragma: export
 #include "dot/geometry.h"        // IWYU pragma: export
 #include "dot/hole_generator.h"  // IWYU pragma: export
 #include "dot/io.h"              // IWYU pragma: export

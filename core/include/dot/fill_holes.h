@@ -6,11 +6,13 @@
 // A staircase of entry points, each usable alone:
 //   FindHoleLoops     every border cycle, split into simple loops, oriented
 //                     so that a fill face agrees with its neighbours;
-//   SelectHoles       which loops to fill (FillOptions::selection);
+//   (selection)       which loops to fill: FillOptions::selection;
 //   TriangulateHole   one loop -> a patch (DOT, escalating to edge
 //                     protection, then to all triangles for small holes);
 //   RefineAndFairPatch  Liepa refinement and fairing of one patch (CGAL);
-//   FillHoles         all of the above over a whole mesh, holes in parallel.
+//   FillHoles         all of the above over a whole mesh, holes in parallel;
+//   FillSoup          repair a polygon soup, then FillHoles (dot/fill_soup.h:
+//                     the use case behind the FillHoles RPC and dotctl).
 //
 // The contract: input vertices keep their order and exact coordinates; new
 // vertices follow them. Input faces are kept, except the faces across a
@@ -70,7 +72,6 @@ struct HoleSelection {
 
 enum class FillStage { kTriangulate, kRefine, kFair };
 std::string_view FillStageName(FillStage s);  // "triangulate", ...
-bool ParseFillStage(std::string_view name, FillStage* stage);
 
 // How FillHoles works. Every field, its meaning and default:
 //  weights          metric weights of the DOT patch. Default: squared
@@ -97,6 +98,9 @@ bool ParseFillStage(std::string_view name, FillStage* stage);
 //                   Default 1.
 //  selection        which holes (above).
 //  threads          holes solved at once; 0: all cores. Default 0.
+//  repair           FillSoup only: repair the soup first (merge duplicate
+//                   vertices, drop degenerate and duplicate faces, orient);
+//                   false: only triangulate its polygons. Default true.
 struct FillOptions {
   MetricWeights weights = DefaultFillWeights();
   bool scale_free_weights = true;
@@ -107,6 +111,7 @@ struct FillOptions {
   int fairing_continuity = 1;
   HoleSelection selection;
   int threads = 0;
+  bool repair = true;
 
   static MetricWeights DefaultFillWeights();
   static Options DefaultTriangulateOptions();
@@ -191,6 +196,12 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
 Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs);
+
+// INVALID_ARGUMENT naming the first field out of its range (weights not
+// finite or all zero, density outside [0.1, 100], fairing_continuity
+// outside 0..2, a negative or non-finite hole size limit, negative
+// threads); FillHoles and FillSoup refuse such options with it.
+Status CheckFillOptions(const FillOptions& options);
 
 // Control's cancel and deadline are honoured in every stage; its progress
 // callback is not used (holes run at once): `on_hole`, when given, is called

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -323,10 +324,41 @@ Options FillOptions::DefaultTriangulateOptions() {
   return o;
 }
 
+Status CheckFillOptions(const FillOptions& o) {
+  for (Metric m : kAllMetrics) {
+    if (!std::isfinite(o.weights[m])) {
+      return InvalidArgument("weight of metric " + std::string(MetricName(m)) +
+                             " is not finite");
+    }
+  }
+  if (!HasNonZeroWeight(o.weights)) {
+    return InvalidArgument("every metric weight is zero");
+  }
+  if (!(o.density >= 0.1 && o.density <= 100)) {
+    return InvalidArgument(
+        "density must be between 0.1 and 100 (default "
+        "sqrt(2))");
+  }
+  if (o.fairing_continuity < 0 || o.fairing_continuity > 2) {
+    return InvalidArgument("fairing_continuity must be 0, 1 or 2");
+  }
+  if (!(o.selection.max_diameter >= 0) ||
+      !std::isfinite(o.selection.max_diameter)) {
+    return InvalidArgument("max_hole_diameter must be a finite number >= 0");
+  }
+  if (o.selection.max_edges < 0) {
+    return InvalidArgument("max_hole_edges must be >= 0");
+  }
+  if (o.threads < 0) return InvalidArgument("threads must be >= 0");
+  return OkStatus();
+}
+
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
                      const Control& control, const HoleProgressFn& on_hole) {
   const auto t_start = Clock::now();
   FillResult out;
+  out.status = CheckFillOptions(options);
+  if (!out.status.ok()) return out;
   RunTicker ticker(control, "the check of the mesh");
   out.status = CheckMesh(mesh, &ticker);
   if (!out.status.ok()) return out;
@@ -444,17 +476,6 @@ std::string_view FillStageName(FillStage s) {
       return "fair";
   }
   return "?";
-}
-
-bool ParseFillStage(std::string_view name, FillStage* stage) {
-  for (FillStage s :
-       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
-    if (FillStageName(s) == name) {
-      *stage = s;
-      return true;
-    }
-  }
-  return false;
 }
 
 std::string_view HoleStatusName(HoleStatus s) {
