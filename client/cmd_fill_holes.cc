@@ -131,46 +131,6 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_flag("--local", f->local, "fill in this process, no server");
 }
 
-// Where the filled mesh goes, checked before any work: the path and its
-// format, or the reason it cannot be written there.
-struct FillTarget {
-  std::string path;  // "-": stdout
-  std::string format, error;
-};
-
-FillTarget ResolveFillOutput(const FillFlags& f) {
-  FillTarget t;
-  t.path = f.output;
-  if (t.path.empty()) {
-    if (IsStreamInput(f.input)) {
-      t.path = "-";
-    } else {
-      std::filesystem::path p(f.input);
-      t.path = (p.parent_path() / (p.stem().string() + ".filled.ply")).string();
-    }
-  }
-  if (t.path == "-") {
-    t.format = f.output_format.empty() ? "off" : f.output_format;
-    return t;
-  }
-  std::string ext = std::filesystem::path(t.path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(c));
-  ext = ext.size() > 1 ? ext.substr(1) : "";
-  if (ext == "off" || ext == "obj" || ext == "ply") {
-    if (!f.output_format.empty() && f.output_format != ext) {
-      t.error = "-o '" + t.path + "' names a ." + ext +
-                " file but --output-format says " + f.output_format;
-    }
-    t.format = ext;
-  } else if (!f.output_format.empty()) {
-    t.format = f.output_format;
-  } else {
-    t.error = "cannot tell the mesh format of '" + t.path +
-              "'; name it .off, .obj or .ply, or give --output-format";
-  }
-  return t;
-}
-
 // Reads the mesh; stdin goes through a temporary file, since CGAL's readers
 // detect binary PLY/STL from a file.
 Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
@@ -256,10 +216,12 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       return;
     }
     // Checked before the work: where the mesh goes, and that it can.
-    const FillTarget target = ResolveFillOutput(f);
+    const OutputTarget target = ResolveOutput(
+        f.input, f.output, f.output_format, /*into_directory=*/false,
+        {"filled", "ply", "off", "--output-format"});
     AtomicOutput sink;
     std::string output_error = target.error;
-    if (output_error.empty()) output_error = sink.Open(target.path);
+    if (output_error.empty()) output_error = sink.Open(target.Name());
     if (!output_error.empty()) {
       report(kOutcomeOutputError, kExitUsage, output_error, false);
       return;
@@ -304,7 +266,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       report(kOutcomeWriteFailed, kExitFailed, write_error, true);
       return;
     }
-    written = target.path;
+    written = target.Name();
     const v1::FillReport& r = o.report;
     const int code = r.unfilled() > 0 ? kExitNoTriangulation : kExitOk;
     if (f.json) {
@@ -325,6 +287,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
          << r.added_vertices() << " vertices, +" << r.added_faces()
          << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> "
          << written << std::endl;
+    for (const std::string& note : FillNotes(r)) text << "  " << note << "\n";
   });
 }
 

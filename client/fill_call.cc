@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "fill_call.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <chrono>
 #include <sstream>
 #include <utility>
 
+#include "cli/json_envelope.h"
 #include "remote_call.h"
 #include "wire/fill_wire.h"
 #include "wire/wire.h"
@@ -109,30 +108,51 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   return out;
 }
 
+std::vector<std::string> FillNotes(const v1::FillReport& r) {
+  std::vector<std::string> notes;
+  const v1::RepairReport& rep = r.repair();
+  std::string repaired;
+  auto add = [&repaired](uint32_t n, const char* what) {
+    if (n == 0) return;
+    repaired += (repaired.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  add(rep.merged_vertices(), "duplicate vertices merged");
+  add(rep.degenerate_faces(), "degenerate faces dropped");
+  add(rep.duplicate_faces(), "duplicate faces dropped");
+  add(rep.triangulated_polygons(), "polygons triangulated");
+  add(rep.reoriented_faces(), "faces reoriented");
+  if (!repaired.empty()) notes.push_back("repair: " + repaired);
+  if (rep.non_manifold_vertices() > 0) {
+    notes.push_back(std::to_string(rep.non_manifold_vertices()) +
+                    " non-manifold vertices kept (their loops are split)");
+  }
+  if (r.skipped() > 0) {
+    notes.push_back(std::to_string(r.skipped()) +
+                    " holes skipped by the selection");
+  }
+  if (r.unfilled() > 0) {
+    notes.push_back(std::to_string(r.unfilled()) +
+                    " holes left open: see each hole's reason");
+  }
+  return notes;
+}
+
 std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
                             const std::string& output_path,
                             const std::string& outcome, int exit_code,
                             const std::string& error, bool called) {
-  std::string report = "null";
-  if (called && o.status.ok()) {
-    google::protobuf::util::JsonPrintOptions options;
-    options.always_print_primitive_fields = true;
-    options.preserve_proto_field_names = true;
-    report.clear();
-    (void)google::protobuf::util::MessageToJsonString(o.report, &report,
-                                                      options);
-  }
-  std::ostringstream s;
-  s << "{\"version\":1,\"input\":" << JsonQuote(input)
-    << ",\"outcome\":" << JsonQuote(outcome) << ",\"exit_code\":" << exit_code
-    << ",\"rpc_status\":"
-    << (called
-            ? JsonQuote(std::string(wire::GrpcCodeName(o.status.error_code())))
-            : std::string("null"))
-    << ",\"error\":" << JsonQuote(error)
-    << ",\"output\":" << JsonQuote(output_path)
-    << ",\"latency_ms\":" << o.latency_ms << ",\"report\":" << report << "}";
-  return s.str();
+  JsonEnvelope e;
+  e.input = input;
+  e.outcome = outcome;
+  e.exit_code = exit_code;
+  if (called) e.rpc_status = o.status.error_code();
+  e.error = error;
+  e.output = output_path;
+  e.latency_ms = o.latency_ms;
+  if (called && o.status.ok()) e.notes = FillNotes(o.report);
+  e.fields = {{"report", called && o.status.ok() ? ProtoJson(o.report)
+                                                 : std::string("null")}};
+  return e.ToJson();
 }
 
 }  // namespace dot::client

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.grpc.pb.h"
@@ -20,6 +21,11 @@ struct FillOutcome {
   MeshData mesh;          // the filled mesh, when status is OK
   double latency_ms = 0;
 };
+
+// What a user should know about a fill besides its counts, one line each:
+// what the repair changed, holes skipped by the selection, holes left
+// open. For the JSON's "notes" and the text output.
+std::vector<std::string> FillNotes(const v1::FillReport& report);
 
 using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 

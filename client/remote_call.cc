@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cli/json_envelope.h"
 #include "wire/wire.h"
 
 namespace dot::client {
@@ -137,35 +138,6 @@ std::string DescribeOutcome(const CallOutcome& o) {
   return s.str();
 }
 
-std::string JsonQuote(const std::string& in) {
-  std::string out = "\"";
-  for (const char c : in) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 std::string DescribeTiming(const CallOutcome& o) {
   char buf[160];
   if (o.status.ok()) {
@@ -221,39 +193,25 @@ std::string DescribeReport(const InputReport& r) {
 }
 
 std::string ReportJson(const InputReport& r) {
+  JsonEnvelope e;
+  e.input = r.input;
+  e.outcome = r.outcome;
+  e.exit_code = r.exit_code;
+  if (r.call) e.rpc_status = r.call->status.error_code();
+  e.error = r.error;
+  e.output = r.output;
+  e.latency_ms = r.call ? r.call->latency_ms : 0;
+  e.notes = r.notes;
   std::string summary = "null";
-  if (r.call && r.call->status.ok()) {
-    google::protobuf::util::JsonPrintOptions options;
-    options.always_print_primitive_fields = true;
-    options.preserve_proto_field_names = true;
-    summary.clear();
-    (void)google::protobuf::util::MessageToJsonString(r.call->summary, &summary,
-                                                      options);
-  }
-  std::ostringstream s;
-  s << "{\"version\":1,\"input\":" << JsonQuote(r.input)
-    << ",\"outcome\":" << JsonQuote(r.outcome)
-    << ",\"exit_code\":" << r.exit_code << ",\"rpc_status\":"
-    << (r.call ? JsonQuote(std::string(
-                     wire::GrpcCodeName(r.call->status.error_code())))
-               : "null")
-    << ",\"error\":" << JsonQuote(r.error)
-    << ",\"output\":" << JsonQuote(r.output)
-    << ",\"latency_ms\":" << (r.call ? r.call->latency_ms : 0)
-    << ",\"notes\":[";
-  for (size_t i = 0; i < r.notes.size(); ++i) {
-    s << (i ? "," : "") << JsonQuote(r.notes[i]);
-  }
-  s << "],\"faces_against_normals\":";
-  if (r.faces_against_normals < 0) {
-    s << "null";
-  } else {
-    s << r.faces_against_normals;
-  }
-  s << ",\"orientation_contradicts_normals\":"
-    << (r.OrientationContradictsNormals() ? "true" : "false")
-    << ",\"summary\":" << summary << "}";
-  return s.str();
+  if (r.call && r.call->status.ok()) summary = ProtoJson(r.call->summary);
+  e.fields = {
+      {"faces_against_normals", r.faces_against_normals < 0
+                                    ? "null"
+                                    : std::to_string(r.faces_against_normals)},
+      {"orientation_contradicts_normals",
+       r.OrientationContradictsNormals() ? "true" : "false"},
+      {"summary", summary}};
+  return e.ToJson();
 }
 
 }  // namespace dot::client

@@ -86,7 +86,6 @@ std::string DescribeReport(const InputReport& report);
 // One JSON object for scripts, version 1 (the fields: README.md, "Using
 // the client").
 std::string ReportJson(const InputReport& report);
-std::string JsonQuote(const std::string& s);
 
 }  // namespace dot::client
 

@@ -65,6 +65,59 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   EXPECT_TRUE(loops.empty());
 }
 
+TEST_F(FillHolesCliTest, SharesTriangulatesOutputNamingAndJsonEnvelope) {
+  // A soup with every vertex twice: the repair has something to say.
+  const MeshData torus = testing::BumpyTorus(20, 10);
+  PolygonSoup soup{torus.vertices, {}};
+  soup.vertices.insert(soup.vertices.end(), torus.vertices.begin(),
+                       torus.vertices.end());
+  const auto n = static_cast<int32_t>(torus.vertices.size());
+  for (size_t f = 0; f + 2 < torus.triangles.size(); ++f) {  // two holes
+    const Triangle& t = torus.triangles[f];
+    const int32_t k = f % 2 ? n : 0;
+    if (f == 50 || f == 51 || f == 120) continue;
+    soup.faces.push_back({t[0] + k, t[1] + k, t[2] + k});
+  }
+  {
+    std::ofstream out(Path("twice.off"));
+    out << "OFF\n"
+        << soup.vertices.size() << " " << soup.faces.size() << " 0\n";
+    for (const Vec3& v : soup.vertices) {
+      out << v.x << " " << v.y << " " << v.z << "\n";
+    }
+    for (const auto& f : soup.faces) {
+      out << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
+    }
+  }
+  // -o DIR/ as triangulate takes it (was: a write error after the work).
+  std::filesystem::create_directory(Path("meshes"));
+  auto r = Dotctl("fill-holes --local --json " + Path("twice.off") + " -o " +
+                  Path("meshes") + "/");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(Path("meshes/twice.ply"))) << r.out;
+  // The shared envelope, in triangulate's order, with notes.
+  const char* keys[] = {
+      "{\"version\":1,\"input\":", ",\"outcome\":\"ok\"", ",\"exit_code\":0",
+      ",\"rpc_status\":\"OK\"",    ",\"error\":\"\"",     ",\"output\":",
+      ",\"latency_ms\":",          ",\"notes\":[",        ",\"report\":{"};
+  size_t at = 0;
+  for (const char* key : keys) {
+    const size_t found = r.out.find(key, at);
+    ASSERT_NE(found, std::string::npos)
+        << key << " after " << at << ": " << r.out;
+    at = found;
+  }
+  EXPECT_NE(
+      r.out.find("repair: " + std::to_string(n) + " duplicate vertices merged"),
+      std::string::npos)
+      << r.out;
+  // Beside the input by default: NAME.filled.ply; the text lists the notes.
+  r = Dotctl("fill-holes --local " + Path("twice.off"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(Path("twice.filled.ply")));
+  EXPECT_NE(r.out.find("  repair: "), std::string::npos) << r.out;
+}
+
 TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
   ASSERT_EQ(Dotctl("generate holes " + Path("torus.off") + " -k 2 -t 40 -o " +
                    Path("holey.off"))

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "cli/inputs.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace dot::client {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
+                                      std::string* error) {
+  std::vector<std::string> files;
+  for (const std::string& a : args) {
+    std::error_code ec;
+    if (a != "-" && fs::is_directory(a, ec)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::directory_iterator(a, ec)) {
+        const std::string ext = e.path().extension().string();
+        if (e.is_regular_file() &&
+            (ext == ".xyz" || ext == ".txt" || ext == ".obj")) {
+          found.push_back(e.path().string());
+        }
+      }
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else {
+      files.push_back(a);  // "-", a file, or a name the reader will refuse
+    }
+  }
+  if (files.empty() && error->empty()) *error = "no polygon files found";
+  return files;
+}
+
+bool IsStreamInput(const std::string& input) {
+  // /dev/stdin and /proc/self/fd/0 resolve to a regular file when stdin is
+  // redirected from one: known by name.
+  if (input == "-" || input == "/dev/stdin" ||
+      input.rfind("/dev/fd/", 0) == 0 ||
+      (input.rfind("/proc/", 0) == 0 &&
+       input.find("/fd/") != std::string::npos)) {
+    return true;
+  }
+  struct stat st;
+  return ::stat(input.c_str(), &st) == 0 && !S_ISREG(st.st_mode) &&
+         !S_ISDIR(st.st_mode);
+}
+
+Status ReadPolygonInput(const std::string& input, const std::string& format,
+                        PolygonData* out, std::vector<std::string>* notes) {
+  if (input != "-" && (format.empty() || !IsStreamInput(input))) {
+    return ReadPolygonFile(input, out, notes);
+  }
+  const bool obj = format == "obj";
+  Status s;
+  if (input == "-") {
+    s = obj ? ReadPolygonObj(std::cin, out, notes)
+            : ReadPolygonText(std::cin, out, notes);
+    if (!s.ok()) s.message = "stdin: " + s.message;
+    return s;
+  }
+  errno = 0;
+  std::ifstream in(input);
+  if (!in) {
+    return InvalidArgument(
+        "cannot open polygon file '" + input + "'" +
+        (errno ? std::string(": ") + std::strerror(errno) : std::string()));
+  }
+  s = obj ? ReadPolygonObj(in, out, notes) : ReadPolygonText(in, out, notes);
+  if (!s.ok()) s.message = input + ": " + s.message;
+  return s;
+}
+
+}  // namespace dot::client

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl's polygon inputs: files, directories of them, and streams.
+#ifndef DOT_CLIENT_CLI_INPUTS_H_
+#define DOT_CLIENT_CLI_INPUTS_H_
+
+#include <string>
+#include <vector>
+
+#include "dot/dot.h"
+
+namespace dot::client {
+
+// Polygon files named, or found (*.xyz, *.txt, *.obj) in a directory; "-"
+// (stdin) and names that do not exist are passed through for the reader to
+// report. Error: no polygon files at all.
+std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
+                                      std::string* error);
+// "-", or a path that names a stream rather than a file (/dev/stdin,
+// /dev/fd/N, /proc/self/fd/N, a pipe, a device): nothing can be written
+// beside it.
+bool IsStreamInput(const std::string& input);
+// Reads one polygon: "-" from stdin, else the file. `format` (--input-format:
+// "", "xyz"/"txt" or "obj") says how to read stdin and other streams
+// (default plain text); files go by their extension (.obj is OBJ, anything
+// else text).
+// `notes` receives what the reader changed (a dropped closing vertex).
+Status ReadPolygonInput(const std::string& input, const std::string& format,
+                        PolygonData* out, std::vector<std::string>* notes);
+
+}  // namespace dot::client
+
+#endif  // DOT_CLIENT_CLI_INPUTS_H_
