@@ -180,9 +180,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
         continue;
       }
       CallOutcome out;
-      out.latency_ms = std::chrono::duration<double, std::milli>(
-                           std::chrono::steady_clock::now() - p.sent)
-                           .count();
+      out.latency_ms = MsSince(p.sent);
       if (msg.has_error()) {
         out.status =
             grpc::Status(static_cast<grpc::StatusCode>(msg.error().code()),

@@ -15,12 +15,9 @@
 namespace dot::client {
 namespace {
 
-std::string MsSince(std::chrono::steady_clock::time_point t0) {
+std::string MsText(std::chrono::steady_clock::time_point t0) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f ms",
-                std::chrono::duration<double, std::milli>(
-                    std::chrono::steady_clock::now() - t0)
-                    .count());
+  std::snprintf(buf, sizeof buf, "%.1f ms", MsSince(t0));
   return buf;
 }
 
@@ -56,7 +53,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
     grpc::health::v1::HealthCheckResponse response;
     const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->Check(&context, request, &response);
-    PrintVerbose(*ctx, "Check answered in " + MsSince(t0));
+    PrintVerbose(*ctx, "Check answered in " + MsText(t0));
     if (!s.ok()) {
       PrintError("UNREACHABLE (" +
                  std::string(wire::GrpcCodeName(s.error_code())) + ": " +
@@ -92,7 +89,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
     v1::ServerInfo i;
     const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->GetServerInfo(&context, {}, &i);
-    PrintVerbose(*ctx, "GetServerInfo answered in " + MsSince(t0));
+    PrintVerbose(*ctx, "GetServerInfo answered in " + MsText(t0));
     if (!s.ok()) {
       PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message());
@@ -150,7 +147,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
     }
     const grpc::Status s = reader->Finish();
     PrintVerbose(*ctx, "GetSource: " + std::to_string(bytes) + " bytes in " +
-                           MsSince(t0));
+                           MsText(t0));
     if (!s.ok()) {
       PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message());

@@ -358,8 +358,7 @@ void StreamWorker(LoadRun& run, int s, int window) {
       --in_flight;
     }
     cv.notify_one();
-    const double ms =
-        std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    const double ms = MsSince(t0);
     PrintVerbose(run.ctx, "request " + msg.id() + ": " + label + " in " +
                               std::to_string(ms) + " ms");
     run.tally.Record(label, ms, msg.has_summary() && msg.summary().cache_hit(),

@@ -15,10 +15,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // Requests stay well under gRPC's default 4 MiB message limit.
 constexpr size_t kRequestBytes = 1 << 20;
 

@@ -15,9 +15,6 @@
 namespace dot::client {
 namespace {
 using Clock = std::chrono::steady_clock;
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 }  // namespace
 
 CallOutcome TriangulateRemote(

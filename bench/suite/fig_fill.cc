@@ -65,10 +65,6 @@ constexpr char kTarball[] = "/usr/share/doc/libcgal-dev/data.tar.gz";
 constexpr FillStage kStages[] = {FillStage::kTriangulate, FillStage::kRefine,
                                  FillStage::kFair};
 
-double MsSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // ---------------------------------------------------------------- meshes
 
 // One benchmark mesh: repaired, with holes; for cut meshes the closed mesh

@@ -238,8 +238,7 @@ void FillHolesReactor::OnHole(int done, int total) {
     v1::FillProgress* p = message_.mutable_progress();
     p->set_holes_done(done);
     p->set_holes_total(total);
-    p->set_elapsed_ms(
-        std::chrono::duration<double, std::milli>(now - job_->arrived).count());
+    p->set_elapsed_ms(Ms(now - job_->arrived));
   }
   Write(message_, false);
 }

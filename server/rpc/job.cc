@@ -13,10 +13,6 @@
 namespace dot::server {
 namespace {
 
-double Ms(Clock::duration d) {
-  return std::chrono::duration<double, std::milli>(d).count();
-}
-
 // The job's deadline: the smallest of the server's limit, the request's
 // time budget and the client's RPC deadline.
 void SetDeadline(const ServiceOptions& o, uint32_t budget_ms,

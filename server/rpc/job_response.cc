@@ -2,13 +2,6 @@
 #include "rpc/job_response.h"
 
 namespace dot::server {
-namespace {
-
-double Ms(Clock::duration d) {
-  return std::chrono::duration<double, std::milli>(d).count();
-}
-
-}  // namespace
 
 grpc::Status StoppedStatus(StopReason why) {
   switch (why) {

@@ -11,10 +11,6 @@
 namespace dot::server {
 namespace {
 
-double Ms(Clock::duration d) {
-  return std::chrono::duration<double, std::milli>(d).count();
-}
-
 std::string WeightsLabel(const MetricWeights& w) {
   std::ostringstream s;
   for (Metric m : kAllMetrics) {

@@ -5,6 +5,7 @@
 #define DOT_DOT_H_
 
 #include "dot/curves.h"          // IWYU pragma: export
+#include "dot/elapsed.h"         // IWYU pragma: export
 #include "dot/fill_holes.h"      // IWYU pragma: export
 #include "dot/fill_soup.h"       // IWYU pragma: export
 #include "dot/geometry.h"        // IWYU pragma: export

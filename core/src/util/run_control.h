@@ -7,16 +7,11 @@
 #include <string>
 #include <string_view>
 
+#include "dot/elapsed.h"  // IWYU pragma: export
 #include "dot/status.h"
 #include "dot/triangulate.h"
 
 namespace dot {
-
-inline double MsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now() - t0)
-      .count();
-}
 
 // Whether the caller asked the run to stop: cancel flag set or deadline
 // passed. Reads only `control`, so worker threads may call it too.
