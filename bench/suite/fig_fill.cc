@@ -50,6 +50,7 @@
 #include "heap_meter.h"
 #include "measure.h"
 #include "suite.h"
+#include "util/union_find.h"
 
 namespace dot::bench {
 namespace {
@@ -339,24 +340,19 @@ struct Holes {
 Holes FindHoles(const MeshData& mesh) {
   Holes h;
   if (!FindHoleLoops(mesh, &h.loops).ok()) return h;
-  std::vector<int> parent(h.loops.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind holes(h.loops.size());  // loops that share a vertex: one hole
   std::unordered_map<int32_t, int> first;
   for (size_t i = 0; i < h.loops.size(); ++i) {
     h.pinched_loops += h.loops[i].pinched;
     for (int32_t v : h.loops[i].vertices) {
       auto [it, added] = first.emplace(v, static_cast<int>(i));
-      if (!added) parent[find(static_cast<int>(i))] = find(it->second);
+      if (!added) holes.Join(static_cast<int>(i), it->second);
     }
   }
   std::map<int, int> id;
   for (size_t i = 0; i < h.loops.size(); ++i) {
-    auto [it, added] =
-        id.emplace(find(static_cast<int>(i)), static_cast<int>(id.size()));
+    auto [it, added] = id.emplace(holes.Find(static_cast<int>(i)),
+                                  static_cast<int>(id.size()));
     h.loop_hole.push_back(it->second);
   }
   h.count = static_cast<int>(id.size());

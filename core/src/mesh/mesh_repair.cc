@@ -10,6 +10,7 @@
 
 #include "mesh/edge_index.h"
 #include "util/run_control.h"
+#include "util/union_find.h"
 
 namespace dot {
 namespace {
@@ -122,14 +123,7 @@ Status CountNonManifoldVertices(size_t vertex_count,
                                 RunTicker& ticker, int64_t* count) {
   // Union-find over face corners: corners of one vertex in faces sharing an
   // edge through it are one fan.
-  std::vector<int32_t> parent(3 * faces.size());
-  for (size_t i = 0; i < parent.size(); ++i) {
-    parent[i] = static_cast<int32_t>(i);
-  }
-  auto find = [&](int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind corners(3 * faces.size());
   auto corner = [&](int32_t f, int32_t v) {
     for (int k = 0; k < 3; ++k) {
       if (faces[f][k] == v) return 3 * f + k;
@@ -143,16 +137,16 @@ Status CountNonManifoldVertices(size_t vertex_count,
     if (!ticker.Tick()) return !(stopped = true);
     if (e.size() == 2) {
       for (int32_t v : {e.lo(), e.hi()}) {
-        parent[find(corner(e[0].triangle, v))] = find(corner(e[1].triangle, v));
+        corners.Join(corner(e[0].triangle, v), corner(e[1].triangle, v));
       }
     }
     return true;
   });
   if (stopped) return ticker.status();
   std::vector<int32_t> fans(vertex_count, 0);
-  for (size_t c = 0; c < parent.size(); ++c) {
+  for (size_t c = 0; c < 3 * faces.size(); ++c) {
     if (!ticker.Tick()) return ticker.status();
-    if (find(static_cast<int32_t>(c)) == static_cast<int32_t>(c)) {
+    if (corners.Find(static_cast<int32_t>(c)) == static_cast<int32_t>(c)) {
       ++fans[faces[c / 3][c % 3]];
     }
   }

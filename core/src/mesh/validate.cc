@@ -18,6 +18,7 @@
 
 #include "mesh/edge_index.h"
 #include "util/run_control.h"
+#include "util/union_find.h"
 
 namespace dot {
 namespace {
@@ -91,26 +92,6 @@ void CountDegenerate(const std::vector<Vec3>& vertices,
   }
 }
 
-// Union-find over triangles, joined across manifold edges.
-struct Components {
-  std::vector<int32_t> parent;
-  explicit Components(size_t count) : parent(count) {
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int32_t Find(int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void Join(int32_t a, int32_t b) { parent[Find(a)] = Find(b); }
-  int64_t Count() {
-    int64_t roots = 0;
-    for (size_t t = 0; t < parent.size(); ++t) {
-      roots += Find(static_cast<int32_t>(t)) == static_cast<int32_t>(t);
-    }
-    return roots;
-  }
-};
-
 // What the pass over edges finds besides the report's counters.
 struct EdgeFindings {
   int64_t edges = 0;
@@ -122,7 +103,7 @@ struct EdgeFindings {
 // (interior), or else is misoriented or non-manifold.
 EdgeFindings CheckEdges(size_t vertex_count,
                         const std::vector<Triangle>& triangles,
-                        Components* components, MeshReport* r) {
+                        UnionFind* components, MeshReport* r) {
   EdgeFindings f;
   f.joins.assign(vertex_count, 0);
   ForEachEdge(BuildEdgeIndex(triangles), [&](const EdgeUses& edge) {
@@ -174,7 +155,7 @@ void CheckBoundary(const std::vector<int32_t>& polygon,
 // A disk is connected, has Euler characteristic V - E + F = 1, and the
 // triangles around every vertex form a single fan.
 void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
-               const EdgeFindings& edges, Components* components,
+               const EdgeFindings& edges, UnionFind* components,
                MeshReport* r) {
   std::vector<int32_t> used;
   for (const Triangle& t : triangles) {
@@ -263,7 +244,7 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
     return r;
   }
   CountDegenerate(vertices, triangles, &r);
-  Components components(triangles.size());
+  UnionFind components(triangles.size());
   EdgeFindings edges = CheckEdges(vertices.size(), triangles, &components, &r);
   CheckBoundary(polygon, std::move(edges.boundary), &r);
   CheckDisk(vertices.size(), triangles, edges, &components, &r);
