@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "dot/elapsed.h"
 #include "heap_meter.h"
 
 namespace dot::bench {
@@ -39,9 +40,7 @@ Sample Measure(int reps, double long_run_s, double cap_s,
     ResetHeapPeak();
     const auto t0 = std::chrono::steady_clock::now();
     fn();
-    ms.push_back(std::chrono::duration<double, std::milli>(
-                     std::chrono::steady_clock::now() - t0)
-                     .count());
+    ms.push_back(MsSince(t0));
     heap.push_back(static_cast<double>(HeapPeakBytes()));
     if (ms.back() > 1000 * cap_s) {
       s.capped = true;

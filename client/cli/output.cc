@@ -82,6 +82,13 @@ OutputTarget ResolveOutput(const std::string& input, const std::string& output,
   if (t.error.empty() && fs::is_directory(t.path, ec)) {
     t.error = CannotWrite(t.path, EISDIR);
   }
+  // `-o DIR/` beside the input, or -o naming it: the write would replace
+  // the input with its own result.
+  if (t.error.empty() && input != "-" && fs::exists(t.path, ec) &&
+      fs::equivalent(input, t.path, ec)) {
+    t.error = "-o '" + output + "' would overwrite the input '" + input +
+              "': name another file or directory";
+  }
   return t;
 }
 

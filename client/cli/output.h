@@ -34,8 +34,9 @@ struct OutputDefaults {
 // `into_directory` or when it is one or ends with '/', else the file.
 // `format` is the format flag: "" means from the extension (the defaults'
 // otherwise); with a file of no or an unknown extension it decides, and
-// contradicting the extension is an error. The check: the format is known
-// and the path is not a directory, with the reason in `error` when not.
+// contradicting the extension is an error. The check: the format is known,
+// the path is not a directory and not the input itself, with the reason
+// in `error` when not.
 OutputTarget ResolveOutput(const std::string& input, const std::string& output,
                            const std::string& format, bool into_directory,
                            const OutputDefaults& defaults = {});

@@ -111,6 +111,17 @@ TEST_F(FillHolesCliTest, SharesTriangulatesOutputNamingAndJsonEnvelope) {
       r.out.find("repair: " + std::to_string(n) + " duplicate vertices merged"),
       std::string::npos)
       << r.out;
+  // Never over the input (was: `-o DIR/` in the input's directory, or -o
+  // naming it, replaced the user's mesh with the result).
+  ASSERT_TRUE(std::filesystem::copy_file(Path("meshes/twice.ply"),
+                                         Path("meshes/again.ply")));
+  for (const std::string& o :
+       {Path("meshes") + "/", Path("meshes/again.ply")}) {
+    r = Dotctl("fill-holes --local " + Path("meshes/again.ply") + " -o " + o);
+    EXPECT_EQ(r.code, 2) << o << ": " << r.out;
+    EXPECT_NE(r.out.find("would overwrite the input"), std::string::npos)
+        << r.out;
+  }
   // Beside the input by default: NAME.filled.ply; the text lists the notes.
   r = Dotctl("fill-holes --local " + Path("twice.off"));
   ASSERT_EQ(r.code, 0) << r.out;

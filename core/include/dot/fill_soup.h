@@ -2,7 +2,7 @@
 // The use case "fill the holes of the mesh a user sent": repair the polygon
 // soup (or, with FillOptions::repair off, only triangulate its polygons),
 // then FillHoles. The FillHoles RPC, `dotctl fill-holes --local` and the
-// benchmark all run this one function, so they answer alike.
+// FillHoles fuzzer run this one function, so they answer alike.
 #ifndef DOT_FILL_SOUP_H_
 #define DOT_FILL_SOUP_H_
 
@@ -15,7 +15,8 @@
 namespace dot {
 
 struct SoupFillResult {
-  // status: the repair's refusal or FillHoles' status; mesh and report as
+  // status: CheckFillOptions' or the repair's refusal, or FillHoles'
+  // status; mesh and report as
   // FillHoles gives them (the mesh is the repaired one, then new vertices).
   FillResult fill;
   RepairReport repair;  // all zero when FillOptions::repair is off

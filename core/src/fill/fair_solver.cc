@@ -101,8 +101,9 @@ bool FairSolver::SolveDeferred() {
   }
   std::vector<double> x;
   const Status status = control_.solve_sparse(system, &x);
-  // The hook's own stop names the solve (the ticker, polled after it,
-  // would not see a deadline the hook met first).
+  // The hook's own stop is the fill's status and names the solve. (Before,
+  // `||` skipped the ticker's Poll after such a stop, and the fill went on
+  // with the ticker's status still OK.)
   if (status.code == StatusCode::kCancelled ||
       status.code == StatusCode::kDeadlineExceeded) {
     return Stop(status);

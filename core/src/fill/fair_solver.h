@@ -35,8 +35,9 @@ class FairSolver {
   bool factor(const Matrix& a, NT& d);
   bool linear_solver(const Vector& b, Vector& x);
 
-  // Whether the last false was a stop (cancel or deadline, seen by the
-  // ticker or by solve_sparse), and its status, which names where.
+  // Whether a step was stopped (cancel or deadline, seen by the ticker or
+  // by solve_sparse; once stopped, it stays so), and that stop's status,
+  // which names where.
   bool stopped() const { return !state_->stop.ok(); }
   const Status& stop_status() const { return state_->stop; }
   // Why solve_sparse failed, when it did (empty otherwise).

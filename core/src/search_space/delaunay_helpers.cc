@@ -118,17 +118,19 @@ Status OutOfMemory(const std::string& what) {
 bool ServeTetrahedralize(int in_fd, int out_fd, uint64_t budget) {
   uint64_t n = 0;
   if (!ReadAll(in_fd, &n, sizeof n)) return false;
+  // The input is held before the request's budget applies (the budget is
+  // for the work); only the helper's own cap can refuse it.
+  std::vector<Vec3> points;
+  try {
+    points.resize(n);
+  } catch (const std::bad_alloc&) {
+    std::_Exit(kExitInputOutOfMemory);  // the request is unread: end
+  }
+  if (!ReadAll(in_fd, points.data(), n * sizeof(Vec3))) return false;
   Tetrahedralization t;
   Status s;
   {
     const GrowthLimit limit(budget);
-    std::vector<Vec3> points;
-    try {
-      points.resize(n);
-    } catch (const std::bad_alloc&) {
-      std::_Exit(kExitInputOutOfMemory);  // the request is unread: end
-    }
-    if (!ReadAll(in_fd, points.data(), n * sizeof(Vec3))) return false;
     try {
       s = TetgenTetrahedralize(points, &t);
     } catch (const std::bad_alloc&) {  // copying TetGen's output
@@ -151,7 +153,6 @@ bool ServeSolveSparse(int in_fd, int out_fd, uint64_t budget) {
   }
   std::vector<double> x;
   Status s;
-  const GrowthLimit limit(budget);
   SparseSystem system;
   system.n = static_cast<int64_t>(n);
   system.rhs = rhs;
@@ -169,6 +170,7 @@ bool ServeSolveSparse(int in_fd, int out_fd, uint64_t budget) {
       !ReadAll(in_fd, system.b.data(), system.b.size() * sizeof(double))) {
     return false;
   }
+  const GrowthLimit limit(budget);  // after the input, as above
   try {
     s = SolveSparseLu(system, &x);
   } catch (const std::bad_alloc&) {
@@ -390,8 +392,9 @@ Status DelaunayHelperPool::Call(HelperRequest kind, const std::string& what,
     s = Exchange(h, kind, what, item_bytes, send, receive, cancel, deadline,
                  memory_budget_bytes);
   }
-  if (s.code == StatusCode::kResourceExhausted) {
-    // Either limit may have been the one hit: name both.
+  if (s.code == StatusCode::kResourceExhausted &&
+      s.message.find("ran out of memory") != std::string::npos) {
+    // Either limit may have been the one the helper hit: name both.
     std::vector<std::string> limits;
     if (memory_budget_bytes > 0) {
       limits.push_back("the request's memory budget is " +
@@ -500,8 +503,12 @@ Status DelaunayHelperPool::Exchange(Helper* h, HelperRequest kind,
   if (s.ok()) s = read(message.data(), len);
   if (s.ok()) s = read(&count, sizeof count);
   if (!s.ok()) return s;
-  // A refusal carries no items (WriteReply): its status is the answer.
-  if (code != 0) return MakeStatus(static_cast<StatusCode>(code), message);
+  // A refusal carries no items (WriteReply): its status is the answer. One
+  // that claims items breaks the protocol: the helper is not reused.
+  if (code != 0) {
+    if (count != 0) Kill(h);
+    return MakeStatus(static_cast<StatusCode>(code), message);
+  }
   const uint64_t reply_bytes = count * item_bytes;
   if (budget > 0 && reply_bytes > budget) {
     Kill(h);  // the rest of its reply is not read
