@@ -3,8 +3,9 @@
 // (server/rpc/fill_holes_reactor.cc): raw messages in any order and size,
 // each parsed alone (a message that does not parse is refused by its
 // position), fed to wire::FillRequestReader under small limits, the options
-// translated, the mesh repaired (or triangulated as sent with no_repair)
-// and filled by dot::FillHoles under a 100 ms deadline.
+// translated, and the soup filled by dot::FillSoup (repair, or only
+// triangulation with no_repair, then FillHoles) under a 100 ms deadline,
+// as the server's FillHoles reactor does.
 //
 // Input framing: a sequence of [2-byte little-endian length][that many
 // bytes] messages (a short last one takes what is left).
@@ -129,20 +130,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   dot::Control control;
   control.deadline =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+  // The server's use case itself; the repair is run again alone only for
+  // the oracle (the input the fill must keep).
+  const dot::SoupFillResult r = dot::FillSoup(soup, options, control);
+  if (!r.fill.status.ok()) {
+    CheckRefusal(r.fill.status);
+    return 0;
+  }
   dot::MeshData mesh;
   dot::RepairReport repair;
-  s = reader.options().no_repair()
-          ? dot::TriangulateSoup(soup, control, &mesh)
-          : dot::RepairMesh(soup, control, &mesh, &repair);
-  if (!s.ok()) {
-    CheckRefusal(s);
-    return 0;
+  s = options.repair ? dot::RepairMesh(soup, &mesh, &repair)
+                     : dot::TriangulateSoup(soup, &mesh);
+  if (!s.ok()) Fail("FillSoup filled a soup its repair refuses");
+  if (r.input_vertices != static_cast<int64_t>(mesh.vertices.size()) ||
+      r.input_faces != static_cast<int64_t>(mesh.triangles.size())) {
+    Fail("FillSoup's input counts are not the repaired mesh's");
   }
-  const dot::FillResult r = dot::FillHoles(mesh, options, control);
-  if (!r.status.ok()) {
-    CheckRefusal(r.status);
-    return 0;
-  }
-  CheckFill(mesh, r);
+  CheckFill(mesh, r.fill);
   return 0;
 }
