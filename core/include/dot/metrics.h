@@ -46,7 +46,6 @@ inline constexpr std::array<Metric, kMetricCount> kAllMetrics = {
 // Stable lower-case names ("area", "perimeter", "normal_deviation", "shape",
 // "dihedral", "squared_dihedral"), used by the CLI, logs and reports.
 std::string_view MetricName(Metric m);
-bool IsBiTriangle(Metric m);
 
 // A value per metric: weights of a metric spec, or per-metric costs.
 struct MetricValues {

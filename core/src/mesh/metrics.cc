@@ -8,10 +8,6 @@
 
 namespace dot {
 
-bool IsBiTriangle(Metric m) {
-  return m == Metric::kDihedral || m == Metric::kSquaredDihedral;
-}
-
 bool HasBiTriangleWeight(const MetricWeights& w) {
   return w[Metric::kDihedral] != 0 || w[Metric::kSquaredDihedral] != 0;
 }
