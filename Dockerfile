@@ -32,11 +32,14 @@ RUN apt-get update \
 COPY --from=build /out/ /
 COPY LICENSE /usr/share/dot/LICENSE
 USER 10001
+# Metrics on every interface of the container, as EXPOSE says (the
+# binary alone binds them to loopback); publishing decides who reaches them.
 # glibc.malloc.hugetlb=1: large tables get transparent huge pages; page
 # faults otherwise cost up to half of a large solve (README, Performance).
 ENV DOT_LISTEN=0.0.0.0:50051 \
     DOT_HEALTH_LISTEN=127.0.0.1:50052 \
     DOT_METRICS_PORT=9090 \
+    DOT_METRICS_BIND=0.0.0.0 \
     DOT_LOG_LEVEL=info \
     DOT_DRAIN_SECONDS=20 \
     DOT_SERVER=127.0.0.1:50051 \

@@ -17,6 +17,7 @@
 #include "fill_call.h"
 #include "remote_call.h"
 #include "request_flags.h"
+#include "wire/fill_wire.h"
 #include "wire/wire.h"
 
 namespace dot::client {
@@ -29,6 +30,7 @@ struct FillFlags {
   double max_hole_diameter = 0;
   bool skip_longest = false;
   std::vector<int32_t> holes;
+  std::vector<uint32_t> loops_through;
   MetricWeights weights;
   bool absolute_weights = false;
   double density = 0;
@@ -50,6 +52,7 @@ struct FillFlags {
     o.set_max_hole_diameter(max_hole_diameter);
     o.set_skip_longest(skip_longest);
     for (int32_t h : holes) o.add_holes(h);
+    for (uint32_t v : loops_through) o.add_loops_through(v);
     o.set_density(density);
     o.set_fairing_continuity(fairing_continuity);
     o.set_no_repair(no_repair);
@@ -100,6 +103,11 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                 "leave the longest border open (a terrain's rim)")
       ->group("Which holes");
   cmd->add_option("--holes", f->holes, "only these hole ids, e.g. 3,7")
+      ->delimiter(',')
+      ->group("Which holes");
+  cmd->add_option("--loops-through", f->loops_through,
+                  "only the holes through these vertices (ids of the input "
+                  "file, from 0), e.g. 120,4077")
       ->delimiter(',')
       ->group("Which holes");
   AddWeightFlags(cmd, &f->weights,
@@ -174,11 +182,17 @@ void PrintTable(const v1::FillReport& r) {
     const double ms =
         h.triangulate_ms() + h.refine_ms() + h.fair_ms() + h.check_ms();
     std::cout << std::setw(5) << h.id() << std::setw(6) << h.boundary_vertices()
-              << "  " << std::left << std::setw(18) << h.status()
-              << std::setw(17) << h.escalation() << std::right << std::setw(8)
-              << h.boundary_inserted() << std::setw(8) << h.refined_vertices()
-              << std::setw(7) << (h.faired() ? "yes" : "no") << std::setw(7)
-              << std::fixed << std::setprecision(1) << ms << "  "
+              << "  " << std::left << std::setw(18)
+              << HoleStatusName(wire::HoleStatusFromWire(h.status()))
+              << std::setw(17)
+              << (h.escalation() == v1::ESCALATION_NONE
+                      ? std::string_view("-")
+                      : EscalationName(
+                            wire::EscalationFromWire(h.escalation())))
+              << std::right << std::setw(8) << h.boundary_inserted()
+              << std::setw(8) << h.refined_vertices() << std::setw(7)
+              << (h.faired() ? "yes" : "no") << std::setw(7) << std::fixed
+              << std::setprecision(1) << ms << "  "
               << (h.pinched() ? "pinched loop; " : "") << h.reason() << "\n";
     std::cout.unsetf(std::ios::fixed);
   }

@@ -36,13 +36,24 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
     control.deadline =
         t0 + std::chrono::milliseconds(wire_options.time_budget_ms());
   }
+  v1::FillAnswer answer;
+  const Status a = wire::FillAnswerFromWire(wire_options, &answer);
+  if (!a.ok()) {
+    out.status = wire::ToGrpcStatus(a);
+    return out;
+  }
+  const auto sent_vertices = static_cast<int64_t>(soup.vertices.size());
   SoupFillResult r = FillSoup(std::move(soup), options, control);
   out.status = wire::ToGrpcStatus(r.fill.status);
   if (r.fill.status.ok()) {
     wire::FillReportToWire(r.fill.report, r.repair,
                            static_cast<size_t>(r.input_vertices),
                            static_cast<size_t>(r.input_faces), &out.report);
-    out.mesh = std::move(r.fill.mesh);
+    if (answer == v1::FILL_ANSWER_PATCHES) {
+      out.patches = PatchesAsSent(r, sent_vertices);
+    } else {
+      out.mesh = std::move(r.fill.mesh);
+    }
   }
   out.latency_ms = MsSince(t0);
   return out;
@@ -58,12 +69,14 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
       std::chrono::system_clock::now() +
       std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
   auto stream = stub.FillHoles(&context);
-  for (const v1::FillHolesRequest& m :
-       wire::MakeFillRequests(id, options, mesh, kRequestBytes)) {
-    if (!stream->Write(m)) break;  // the server answered early: see Finish
+  wire::FillRequestWriter requests(id, options, mesh, kRequestBytes);
+  v1::FillHolesRequest request;
+  while (requests.Next(&request)) {
+    if (!stream->Write(request)) break;  // the server answered early
   }
   stream->WritesDone();
   wire::MeshAssembler assembler;
+  wire::PatchReader patches;
   v1::FillHolesResponse response;
   bool have_report = false;
   Status assembled = OkStatus();
@@ -74,6 +87,9 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
         break;
       case v1::FillHolesResponse::kMesh:
         if (assembled.ok()) assembled = assembler.Add(response.mesh());
+        break;
+      case v1::FillHolesResponse::kPatch:
+        if (assembled.ok()) assembled = patches.Add(response.patch());
         break;
       case v1::FillHolesResponse::kReport:
         out.report = response.report();
@@ -94,9 +110,10 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   const size_t vertices =
       out.report.input_vertices() + out.report.added_vertices();
   const size_t faces = out.report.input_faces() + out.report.added_faces();
-  if (assembled.ok()) {
+  if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH) {
     assembled = assembler.Finish(vertices, faces, {}, &out.mesh);
   }
+  out.patches = std::move(patches.patches());
   if (!assembled.ok()) {
     out.status = grpc::Status(grpc::StatusCode::INTERNAL,
                               "bad mesh from the server: " + assembled.message);

@@ -16,9 +16,10 @@
 namespace dot::client {
 
 struct FillOutcome {
-  grpc::Status status;    // of the RPC (or of the local run)
-  v1::FillReport report;  // valid when status is OK
-  MeshData mesh;          // the filled mesh, when status is OK
+  grpc::Status status;             // of the RPC (or of the local run)
+  v1::FillReport report;           // valid when status is OK
+  MeshData mesh;                   // the filled mesh (FILL_ANSWER_MESH)
+  std::vector<SentPatch> patches;  // FILL_ANSWER_PATCHES
   double latency_ms = 0;
 };
 

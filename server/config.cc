@@ -129,7 +129,8 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
   app.add_option_function<std::string>(
          "--delaunay-backend",
          [&s](const std::string& name) {
-           ParseDelaunayBackend(name, &s.solve.delaunay);
+           s.solve.delaunay =
+               DelaunayBackendFromName(name).value_or(s.solve.delaunay);
          },
          "3D Delaunay backend of requests that do not choose one")
       ->envname("DOT_DELAUNAY_BACKEND")

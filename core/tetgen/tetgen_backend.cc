@@ -5,7 +5,8 @@
 #include <mutex>
 #include <new>
 
-#include "dot/triangulate.h"
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "tetgen.h"  // needs TETLIBRARY (set by TetGen::TetGen) to throw
 
 namespace dot {

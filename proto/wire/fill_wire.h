@@ -16,18 +16,67 @@ namespace dot::wire {
 
 // Checks and maps the options; Options::memory_budget_bytes and the
 // Delaunay backend are left to the caller (the server clamps them).
+// FillOptions.answer is the transport's (see FillAnswerFromWire).
 Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* options);
+// The answer asked for; kInvalidArgument for a value this server does not
+// know.
+Status FillAnswerFromWire(const v1::FillOptions& wire, v1::FillAnswer* answer);
 
 void FillReportToWire(const FillReport& report, const RepairReport& repair,
                       size_t input_vertices, size_t input_faces,
                       v1::FillReport* out);
+v1::HoleStatus HoleStatusToWire(HoleStatus status);
+v1::Escalation EscalationToWire(Escalation escalation);
+// Back, for clients that print the core's names (an unknown value reads
+// as kFailed / kNone).
+HoleStatus HoleStatusFromWire(v1::HoleStatus status);
+Escalation EscalationFromWire(v1::Escalation escalation);
 
-// The request stream of a mesh: the first message carries id and options,
-// then vertices, then faces (polygons keep their corner counts), each
-// message at most about `max_bytes`.
-std::vector<v1::FillHolesRequest> MakeFillRequests(
-    const std::string& id, const v1::FillOptions& options,
-    const PolygonSoup& mesh, size_t max_bytes);
+// The request stream of a mesh, built one message at a time as the stream
+// asks (an upload never holds a second copy of the mesh): the first message
+// carries id and options, then MeshChunk slices of vertices, then of faces
+// (polygons with their corner counts), each message at most about
+// `max_bytes`. `mesh` must outlive the writer.
+class FillRequestWriter {
+ public:
+  FillRequestWriter(std::string id, v1::FillOptions options,
+                    const PolygonSoup& mesh, size_t max_bytes);
+  // The next message; false once every one has been given.
+  bool Next(v1::FillHolesRequest* request);
+
+ private:
+  std::string id_;
+  v1::FillOptions options_;
+  const PolygonSoup* mesh_;
+  bool all_triangles_ = true, first_ = true;
+  size_t vertices_per_, indices_per_;
+  size_t next_vertex_ = 0, next_face_ = 0;
+};
+
+// Patches (FILL_ANSWER_PATCHES) to messages of at most about `max_bytes`;
+// a patch larger than that continues over several messages.
+class PatchWriter {
+ public:
+  PatchWriter(const std::vector<SentPatch>& patches, size_t max_bytes)
+      : patches_(&patches), max_bytes_(max_bytes) {}
+  bool Next(v1::HolePatch* message);
+
+ private:
+  const std::vector<SentPatch>* patches_;
+  size_t max_bytes_;
+  size_t patch_ = 0, vertex_ = 0, face_ = 0, replaced_ = 0;
+};
+
+// Reassembles the patches of a FillHoles answer, checking that each message
+// continues the last (ids in order, vertices numbered on).
+class PatchReader {
+ public:
+  Status Add(const v1::HolePatch& message);
+  std::vector<SentPatch>& patches() { return patches_; }
+
+ private:
+  std::vector<SentPatch> patches_;
+};
 
 // Collects a request stream into a polygon soup, refusing (naming the
 // message and the problem) what does not fit: partial coordinates, sizes

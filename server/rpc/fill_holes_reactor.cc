@@ -100,7 +100,8 @@ grpc::Status FillHolesReactor::Accept() {
     if (!refused.ok()) return refused;
     first_message_timer_.Cancel();  // the job's deadline bounds it now
     // Options are checked before the mesh is read, not after, and once.
-    const Status s = wire::FillOptionsFromWire(m.options(), &options_);
+    Status s = wire::FillOptionsFromWire(m.options(), &options_);
+    if (s.ok()) s = wire::FillAnswerFromWire(m.options(), &answer_);
     if (!s.ok()) return wire::ToGrpcStatus(s);
     ApplyServerLimits(runner_->options(), m.options().memory_budget_bytes(),
                       runner_->compute_threads(), &options_);
@@ -210,8 +211,13 @@ Status FillHolesReactor::Fill(Job& job, const Control& control) {
   job.log_detail =
       "received_vertices=" + std::to_string(soup_.vertices.size()) +
       " received_faces=" + std::to_string(soup_.faces.size());
+  const auto sent_vertices = static_cast<int64_t>(soup_.vertices.size());
   result_ = FillSoup(std::move(soup_), options_, control,
                      [this](int done, int total) { OnHole(done, total); });
+  if (result_.fill.status.ok() && answer_ == v1::FILL_ANSWER_PATCHES) {
+    patches_ = PatchesAsSent(result_, sent_vertices);
+    result_.fill.mesh = {};  // the patches are the answer
+  }
   const FillReport& r = result_.fill.report;
   if (result_.input_faces > 0) {
     job.log_detail = "vertices=" + std::to_string(result_.input_vertices) +
@@ -285,12 +291,15 @@ void FillHolesReactor::WriteNext() {
       FinishWith(status);
       return;
     }
+    const size_t bytes = runner_->options().chunk_bytes;
     chunks_.emplace(result_.fill.mesh.vertices, result_.fill.mesh.triangles, 0,
-                    runner_->options().chunk_bytes);
+                    bytes);
+    patch_writer_.emplace(patches_, bytes);
   }
   message_.Clear();
   message_.set_id(job_->id);
-  if (chunks_->Next(message_.mutable_mesh())) {
+  if (chunks_->Next(message_.mutable_mesh()) ||
+      patch_writer_->Next(message_.mutable_patch())) {
     Write(message_, false);
     return;
   }

@@ -74,8 +74,10 @@ class FillHolesReactor final
   // Input and output of the fill; touched by the compute thread only while
   // the job runs, by the reactor only before and after.
   FillOptions options_;  // from the first message, with the server's limits
-  PolygonSoup soup_;     // moved into the fill
+  v1::FillAnswer answer_ = v1::FILL_ANSWER_MESH;
+  PolygonSoup soup_;  // moved into the fill
   SoupFillResult result_;
+  std::vector<SentPatch> patches_;  // FILL_ANSWER_PATCHES
 
   std::mutex mu_;
   bool uploading_ = true;  // reads go on; the timers may end the call
@@ -85,7 +87,9 @@ class FillHolesReactor final
   bool broken_ = false;    // a write failed: the client is gone
   Clock::time_point last_progress_{};
 
+  // The answer's writers, made once the job has succeeded.
   std::optional<wire::MeshChunker> chunks_;
+  std::optional<wire::PatchWriter> patch_writer_;
   v1::FillHolesResponse message_;   // the message being written
   grpc::ByteBuffer message_bytes_;  // message_, serialized
 

@@ -140,7 +140,8 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
   EXPECT_EQ(r.out.rfind("{\"version\":1,", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\"rpc_status\":\"OK\""), std::string::npos);
   EXPECT_NE(r.out.find("\"filled\":2"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"escalation\":\"delaunay\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"escalation\":\"ESCALATION_DELAUNAY\""),
+            std::string::npos);
 
   // stdin to stdout: an OFF mesh comes out, the summary goes to stderr.
   r = Dotctl("fill-holes --local - --input-format off -o - < " +

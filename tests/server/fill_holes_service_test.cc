@@ -38,8 +38,10 @@ TEST(FillHolesServiceTest, AMillionFacesStreamInAndOutAsFilledLocally) {
   ASSERT_GT(m.triangles.size(), 990000u);
   const PolygonSoup soup = ToSoup(m);
   v1::FillOptions options;
-  const auto requests = wire::MakeFillRequests("big", options, soup, 1 << 20);
-  EXPECT_GT(requests.size(), 10u);
+  size_t requests = 0;
+  wire::FillRequestWriter writer("big", options, soup, 1 << 20);
+  for (v1::FillHolesRequest r; writer.Next(&r);) ++requests;
+  EXPECT_GT(requests, 10u);
   const auto t0 = std::chrono::steady_clock::now();
   const client::FillOutcome remote =
       client::FillRemote(*s.stub, "big", options, soup, 300);
@@ -80,8 +82,8 @@ grpc::Status SendRaw(v1::Triangulator::Stub& stub,
 v1::FillHolesRequest Message(std::vector<double> vertices,
                              std::vector<uint32_t> faces) {
   v1::FillHolesRequest m;
-  for (double x : vertices) m.add_vertices(x);
-  for (uint32_t f : faces) m.add_faces(f);
+  for (double x : vertices) m.mutable_mesh()->add_vertices(x);
+  for (uint32_t f : faces) m.mutable_mesh()->add_triangles(f);
   return m;
 }
 
@@ -99,7 +101,7 @@ TEST(FillHolesServiceTest, BadMeshesAreRefusedNamingTheProblem) {
   v1::FillHolesRequest late_options = Message({}, {0, 1, 2});
   late_options.set_id("late");
   v1::FillHolesRequest polygons = Message(tri, {0, 1, 2});
-  polygons.add_face_sizes(4);
+  polygons.mutable_mesh()->add_face_sizes(4);
   v1::FillHolesRequest stage = Message(tri, {0, 1, 2});
   stage.mutable_options()->set_fairing_continuity(5);
   const std::vector<Case> cases = {
@@ -144,7 +146,8 @@ TEST(FillHolesServiceTest, LimitsAndCancel) {
   const PolygonSoup soup = ToSoup(m);
   grpc::ClientContext context;
   auto stream = roomy.stub->FillHoles(&context);
-  for (const auto& msg : wire::MakeFillRequests("c", {}, soup, 1 << 20)) {
+  wire::FillRequestWriter writer("c", {}, soup, 1 << 20);
+  for (v1::FillHolesRequest msg; writer.Next(&msg);) {
     ASSERT_TRUE(stream->Write(msg));
   }
   stream->WritesDone();

@@ -21,8 +21,6 @@
 #ifndef DOT_DELAUNAY_HELPERS_H_
 #define DOT_DELAUNAY_HELPERS_H_
 
-#include <sys/types.h>
-
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -32,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "dot/triangulate.h"
+#include "dot/control.h"
 
 namespace dot {
 
@@ -85,11 +83,11 @@ class DelaunayHelperPool {
                      std::chrono::steady_clock::time_point deadline,
                      int64_t memory_budget_bytes = 0);
   int64_t starts() const { return starts_; }  // helper processes started
-  std::vector<pid_t> Pids() const;            // running helpers, for tests
+  std::vector<int> Pids() const;              // running helpers, for tests
 
  private:
   struct Helper {
-    pid_t pid = -1;
+    int pid = -1;  // a pid_t (static_assert in the .cc): no POSIX header here
     int to_child = -1, from_child = -1;
     bool busy = false;
   };

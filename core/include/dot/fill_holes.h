@@ -63,11 +63,16 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops,
 //  skip_longest  leave the border with the most edges open (the outer rim
 //                of a terrain or of an open surface). Default false.
 //  ids           only these loop ids (HoleLoop::id); empty: every loop.
+//  through_vertices  only the loops through one of these vertices (a
+//                cursor or a selection in a modeling tool names loops this
+//                way); a vertex on no loop is refused. Empty: every loop.
+// A loop is filled when it passes every criterion given.
 struct HoleSelection {
   int max_edges = 0;
   double max_diameter = 0;
   bool skip_longest = false;
   std::vector<int32_t> ids;
+  std::vector<int32_t> through_vertices;
 };
 
 enum class FillStage { kTriangulate, kRefine, kFair };
@@ -151,12 +156,6 @@ struct FillReport {
   double total_ms = 0;
 };
 
-struct FillResult {
-  Status status;  // kOk even when some holes stay open: see report
-  MeshData mesh;  // input vertices first, unchanged; then new ones
-  FillReport report;
-};
-
 // One filled hole before it is merged into the mesh: faces over mesh ids,
 // where ids >= first_new_id index `new_vertices`.
 struct HolePatch {
@@ -165,6 +164,23 @@ struct HolePatch {
   // Replacement of each split input face (split_faces[k] -> pieces[k]).
   std::vector<int32_t> split_faces;
   std::vector<std::vector<Triangle>> pieces;
+};
+
+// A hole as it was merged into FillResult::mesh: its patch in the result's
+// ids (new_vertices[k] is mesh vertex first_vertex + k).
+struct FilledHole {
+  int32_t hole = 0;  // HoleReport::id
+  int32_t first_vertex = 0;
+  HolePatch patch;
+};
+
+struct FillResult {
+  Status status;  // kOk even when some holes stay open: see report
+  MeshData mesh;  // input vertices first, unchanged; then new ones
+  FillReport report;
+  // What is new in `mesh`, hole by hole (in merge order, which is id
+  // order): for callers that keep their mesh and add only the patches.
+  std::vector<FilledHole> patches;
 };
 
 // The per-hole stages, for callers that drive them (and for tests). The

@@ -7,6 +7,7 @@
 #define DOT_FILL_SOUP_H_
 
 #include <cstdint>
+#include <vector>
 
 #include "dot/fill_holes.h"
 #include "dot/io.h"
@@ -19,7 +20,9 @@ struct SoupFillResult {
   // status; mesh and report as
   // FillHoles gives them (the mesh is the repaired one, then new vertices).
   FillResult fill;
-  RepairReport repair;  // all zero when FillOptions::repair is off
+  // What repair changed; with FillOptions::repair off its counts are zero
+  // and vertex_map empty (ids unchanged), but face_origin is set.
+  RepairReport repair;
   // The repaired mesh that was filled: the first input_vertices vertices
   // of fill.mesh are its vertices.
   int64_t input_vertices = 0, input_faces = 0;
@@ -27,11 +30,32 @@ struct SoupFillResult {
 
 // `soup` is taken by value and released once repaired: a caller that
 // moves its soup in holds one copy of the mesh, not two. Options are
-// checked (CheckFillOptions) before any work; `control`'s cancel and
-// deadline hold in every step; `on_hole` as in FillHoles.
+// checked (CheckFillOptions) before any work; selection.through_vertices
+// are soup ids (mapped through the repair); `control`'s cancel and deadline
+// hold in every step; `on_hole` as in FillHoles.
 SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options = {},
                         const Control& control = {},
                         const HoleProgressFn& on_hole = nullptr);
+
+// A filled hole in the ids of the soup as it was sent, for a caller that
+// keeps its mesh and adds only what is new (the FillHoles RPC's patches
+// answer, Blender): new vertices are numbered on from the soup's, patch
+// after patch (new_vertices[k] is vertex first_vertex + k); faces use soup
+// vertex ids, a duplicate that repair merged named by its first copy; each
+// soup face that edge protection split is listed with the triangles that
+// replace all of it (a polygon's other triangles included). Faces agree
+// with the repaired orientation.
+struct SentPatch {
+  int32_t hole = 0;  // HoleReport::id
+  int32_t first_vertex = 0;
+  std::vector<Vec3> new_vertices;
+  std::vector<Triangle> faces;
+  std::vector<int32_t> replaced_faces;
+  std::vector<std::vector<Triangle>> replacements;
+};
+// `soup_vertices`: how many vertices the soup had as sent.
+std::vector<SentPatch> PatchesAsSent(const SoupFillResult& result,
+                                     int64_t soup_vertices);
 
 }  // namespace dot
 

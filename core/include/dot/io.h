@@ -28,19 +28,10 @@
 #include <vector>
 
 #include "dot/geometry.h"
+#include "dot/mesh.h"
 #include "dot/status.h"
 
 namespace dot {
-
-struct PolygonData {
-  std::vector<Vec3> vertices;
-  std::vector<Vec3> normals;  // empty or one per vertex
-};
-
-struct MeshData {
-  std::vector<Vec3> vertices;
-  std::vector<Triangle> triangles;
-};
 
 // Format from the extension: .obj is OBJ, anything else plain text. Errors
 // name the file (and the reason a file cannot be opened). `notes`, when not
@@ -61,10 +52,6 @@ Status WriteMesh(std::ostream& out, const std::string& format,
                  const MeshData& mesh, bool ascii = false);
 
 // A mesh as read: faces of any size, nothing merged or dropped.
-struct PolygonSoup {
-  std::vector<Vec3> vertices;
-  std::vector<std::vector<int32_t>> faces;
-};
 // Format from the extension (.off, .obj, .ply, .stl); kInvalidArgument names
 // the file and what is wrong with it.
 Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out);
@@ -76,8 +63,10 @@ Status ReadMeshFile(const std::string& path, MeshData* out);
 // and deadline are honoured between and within polygons.
 struct Control;
 Status TriangulateSoup(const PolygonSoup& soup, MeshData* out);
+// `face_of`, when given, receives for each triangle the soup face it
+// comes from.
 Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
-                       MeshData* out);
+                       MeshData* out, std::vector<int32_t>* face_of = nullptr);
 
 }  // namespace dot
 

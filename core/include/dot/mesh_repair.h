@@ -15,9 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "dot/control.h"
 #include "dot/io.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 
 namespace dot {
 
@@ -31,6 +32,8 @@ struct RepairReport {
   int64_t components = 0;
   // Old vertex index -> index in the repaired mesh.
   std::vector<int32_t> vertex_map;
+  // Repaired triangle -> the index of the soup face it comes from.
+  std::vector<int32_t> face_origin;
 
   bool changed() const {
     return merged_vertices + degenerate_faces + duplicate_faces +

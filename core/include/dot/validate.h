@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "dot/control.h"
 #include "dot/geometry.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 
 namespace dot {
 

@@ -19,7 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "dot/triangulate.h"
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "util/run_control.h"
 
 namespace dot {

@@ -12,11 +12,12 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <unordered_map>
 #include <unordered_set>
 
-#include "fill/mesh_topology.h"
 #include "fill/patch_check.h"
 #include "mesh/edge_index.h"
+#include "mesh/topology.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -73,6 +74,23 @@ Status Select(const std::vector<HoleLoop>& loops, const HoleSelection& sel,
     }
     wanted[id] = true;
   }
+  // A loop passes through a named vertex: flags by vertex, then by loop.
+  std::vector<bool> through(sel.through_vertices.empty() ? 0 : loops.size(),
+                            false);
+  if (!sel.through_vertices.empty()) {
+    std::unordered_map<int32_t, std::vector<int32_t>> loops_at;
+    for (const HoleLoop& l : loops) {
+      for (int32_t v : l.vertices) loops_at[v].push_back(l.id);
+    }
+    for (int32_t v : sel.through_vertices) {
+      auto it = loops_at.find(v);
+      if (it == loops_at.end()) {
+        return InvalidArgument("loops_through: vertex " + std::to_string(v) +
+                               " is on no border loop of the mesh");
+      }
+      for (int32_t id : it->second) through[id] = true;
+    }
+  }
   int32_t longest = -1;
   if (sel.skip_longest) {
     std::map<int32_t, size_t> edges;
@@ -87,6 +105,8 @@ Status Select(const std::vector<HoleLoop>& loops, const HoleSelection& sel,
     const auto n = static_cast<int>(l.vertices.size());
     if (!sel.ids.empty() && !wanted[l.id]) {
       why[i] = "not among the requested holes";
+    } else if (!through.empty() && !through[l.id]) {
+      why[i] = "through none of the requested vertices";
     } else if (l.border == longest) {
       why[i] = "the longest border (skip_longest)";
     } else if (sel.max_edges > 0 && n > sel.max_edges) {
@@ -287,6 +307,17 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
   }
   for (const Triangle& t : w.patch.faces) {
     out->mesh.triangles.push_back(remap(t));
+  }
+  FilledHole& kept = out->patches.emplace_back();
+  kept.hole = w.report.id;
+  kept.first_vertex = static_cast<int32_t>(out->mesh.vertices.size() -
+                                           w.patch.new_vertices.size());
+  kept.patch.new_vertices = w.patch.new_vertices;
+  for (const Triangle& t : w.patch.faces) kept.patch.faces.push_back(remap(t));
+  kept.patch.split_faces = w.patch.split_faces;
+  for (const auto& pieces : w.patch.pieces) {
+    auto& mapped = kept.patch.pieces.emplace_back();
+    for (const Triangle& t : pieces) mapped.push_back(remap(t));
   }
   for (const Triangle& t : fresh) {
     for (int k = 0; k < 3; ++k) {

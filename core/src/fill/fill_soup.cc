@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "dot/fill_soup.h"
 
+#include <algorithm>
+#include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace dot {
@@ -10,15 +13,94 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   SoupFillResult out;
   out.fill.status = CheckFillOptions(options);
   if (!out.fill.status.ok()) return out;
+  FillOptions fill_options = options;
+  for (int32_t& v : fill_options.selection.through_vertices) {
+    if (v < 0 || static_cast<size_t>(v) >= soup.vertices.size()) {
+      out.fill.status =
+          InvalidArgument("loops_through: vertex " + std::to_string(v) +
+                          " is not a vertex of the mesh (it has " +
+                          std::to_string(soup.vertices.size()) + ")");
+      return out;
+    }
+  }
   MeshData mesh;
-  out.fill.status = options.repair
-                        ? RepairMesh(soup, control, &mesh, &out.repair)
-                        : TriangulateSoup(soup, control, &mesh);
+  out.fill.status =
+      options.repair
+          ? RepairMesh(soup, control, &mesh, &out.repair)
+          : TriangulateSoup(soup, control, &mesh, &out.repair.face_origin);
   soup = {};  // the repaired mesh replaces it
   if (!out.fill.status.ok()) return out;
+  if (!out.repair.vertex_map.empty()) {
+    for (int32_t& v : fill_options.selection.through_vertices) {
+      v = out.repair.vertex_map[v];
+    }
+  }
   out.input_vertices = static_cast<int64_t>(mesh.vertices.size());
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());
-  out.fill = FillHoles(mesh, options, control, on_hole);
+  out.fill = FillHoles(mesh, fill_options, control, on_hole);
+  return out;
+}
+
+std::vector<SentPatch> PatchesAsSent(const SoupFillResult& r,
+                                     int64_t soup_vertices) {
+  // Repaired vertex -> its first copy in the soup.
+  const auto repaired = static_cast<int32_t>(r.input_vertices);
+  std::vector<int32_t> sent_id;
+  if (!r.repair.vertex_map.empty()) {
+    sent_id.assign(repaired, -1);
+    for (size_t i = r.repair.vertex_map.size(); i-- > 0;) {
+      sent_id[r.repair.vertex_map[i]] = static_cast<int32_t>(i);
+    }
+  }
+  auto as_sent = [&](Triangle t) {
+    for (int32_t& v : t) {
+      v = v >= repaired     ? static_cast<int32_t>(soup_vertices + v - repaired)
+          : sent_id.empty() ? v
+                            : sent_id[v];
+    }
+    return t;
+  };
+  // Split repaired faces -> their pieces; soup faces that change.
+  std::unordered_map<int32_t, const std::vector<Triangle>*> pieces_of;
+  std::unordered_map<int32_t, std::vector<Triangle>> replacement;
+  for (const FilledHole& h : r.fill.patches) {
+    for (size_t k = 0; k < h.patch.split_faces.size(); ++k) {
+      const int32_t f = h.patch.split_faces[k];
+      pieces_of[f] = &h.patch.pieces[k];
+      replacement[r.repair.face_origin[f]];
+    }
+  }
+  if (!replacement.empty()) {
+    for (int32_t f = 0; f < static_cast<int32_t>(r.input_faces); ++f) {
+      auto it = replacement.find(r.repair.face_origin[f]);
+      if (it == replacement.end()) continue;
+      auto split = pieces_of.find(f);
+      if (split == pieces_of.end()) {
+        it->second.push_back(as_sent(r.fill.mesh.triangles[f]));
+      } else {
+        for (const Triangle& t : *split->second)
+          it->second.push_back(as_sent(t));
+      }
+    }
+  }
+  std::vector<SentPatch> out;
+  for (const FilledHole& h : r.fill.patches) {
+    SentPatch& p = out.emplace_back();
+    p.hole = h.hole;
+    p.first_vertex =
+        static_cast<int32_t>(soup_vertices + h.first_vertex - repaired);
+    p.new_vertices = h.patch.new_vertices;
+    for (const Triangle& t : h.patch.faces) p.faces.push_back(as_sent(t));
+    for (int32_t f : h.patch.split_faces) {
+      const int32_t sent = r.repair.face_origin[f];
+      if (std::find(p.replaced_faces.begin(), p.replaced_faces.end(), sent) !=
+          p.replaced_faces.end()) {
+        continue;  // two triangles of one polygon
+      }
+      p.replaced_faces.push_back(sent);
+      p.replacements.push_back(replacement[sent]);
+    }
+  }
   return out;
 }
 

@@ -6,8 +6,9 @@
 #include <memory>
 
 #include "dot/fill_holes.h"
-#include "fill/mesh_topology.h"
 #include "mesh/edge_index.h"
+#include "mesh/normals.h"
+#include "mesh/topology.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -118,7 +119,6 @@ std::vector<HoleEdge>::const_iterator NextAroundFan(
   const MeshTopology& t = **topo;
   // The other end of in's fan: turn from in.face across sides w -> v.
   int32_t face = in.face, own_end = -1;
-  Vec3 normal;
   for (int32_t step = t.face_begin[v]; step < t.face_begin[v + 1]; ++step) {
     const Triangle& f = mesh.triangles[face];
     const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
@@ -136,11 +136,8 @@ std::vector<HoleEdge>::const_iterator NextAroundFan(
     }
     face = across;
   }
-  for (int32_t j = t.face_begin[v]; j < t.face_begin[v + 1]; ++j) {
-    const Triangle& g = mesh.triangles[t.faces[j]];
-    const Vec3& a = mesh.vertices[g[0]];
-    normal = normal + Cross(mesh.vertices[g[1]] - a, mesh.vertices[g[2]] - a);
-  }
+  const Vec3 normal = AreaWeightedNormal(
+      mesh, t, v, [&](int32_t id) -> const Vec3& { return mesh.vertices[id]; });
   const Vec3& p = mesh.vertices[v];
   const Vec3 back = mesh.vertices[in.from] - p;
   auto clockwise = [&](const HoleEdge& e) {

@@ -10,7 +10,7 @@
 
 #include "dot/fill_holes.h"
 #include "dot/validate.h"
-#include "fill/mesh_topology.h"
+#include "mesh/topology.h"
 #include "util/run_control.h"
 
 namespace dot {

@@ -8,9 +8,10 @@
 #include <functional>
 #include <vector>
 
+#include "dot/control.h"
 #include "dot/geometry.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 
 namespace dot {
 

@@ -16,8 +16,8 @@
 
 #include "dot/fill_holes.h"
 #include "fill/fair_solver.h"
-#include "fill/mesh_topology.h"
 #include "fill/patch_check.h"
+#include "mesh/topology.h"
 #include "util/run_control.h"
 
 namespace dot {

@@ -9,7 +9,8 @@
 #include <unordered_map>
 
 #include "dot/fill_holes.h"
-#include "fill/mesh_topology.h"
+#include "mesh/normals.h"
+#include "mesh/topology.h"
 #include "polygon/unit_scale.h"
 
 namespace dot {
@@ -29,26 +30,16 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
   *scale = ChooseUnitScale(p.vertices);
   for (Vec3& v : p.vertices) v = scale->ToWork(v);
   auto work = [&](int32_t v) { return scale->ToWork(mesh.vertices[v]); };
-  auto cross = [&](const Triangle& t) {
-    const Vec3 a = work(t[0]);
-    return Cross(work(t[1]) - a, work(t[2]) - a);
-  };
   std::unordered_map<int32_t, int32_t> position;
   double perimeter = 0;
   for (int32_t i = 0; i < n; ++i) {
     position[loop.vertices[i]] = i;
     perimeter += Distance(p.vertices[i], p.vertices[(i + 1) % n]);
     p.edge_face_normals.push_back(
-        Normalized(cross(mesh.triangles[loop.faces[i]])));
+        Normalized(FaceCross(mesh.triangles[loop.faces[i]], work)));
   }
-  // Area-weighted vertex normals: the sum of the incident faces' cross
-  // products.
   for (int32_t i = 0; i < n; ++i) {
-    const int32_t v = loop.vertices[i];
-    Vec3 sum;
-    for (int32_t k = topo.face_begin[v]; k < topo.face_begin[v + 1]; ++k) {
-      sum = sum + cross(mesh.triangles[topo.faces[k]]);
-    }
+    Vec3 sum = AreaWeightedNormal(mesh, topo, loop.vertices[i], work);
     if (Norm(sum) == 0) sum = p.edge_face_normals[i];
     if (Norm(sum) == 0) sum = {0, 0, 1};
     p.normals.push_back(Normalized(sum));

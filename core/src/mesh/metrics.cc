@@ -87,4 +87,22 @@ double WeightedTotal(const MetricWeights& w, const MetricValues& costs) {
   return total;
 }
 
+std::string_view MetricName(Metric m) {
+  switch (m) {
+    case Metric::kArea:
+      return "area";
+    case Metric::kPerimeter:
+      return "perimeter";
+    case Metric::kNormalDeviation:
+      return "normal_deviation";
+    case Metric::kShape:
+      return "shape";
+    case Metric::kDihedral:
+      return "dihedral";
+    case Metric::kSquaredDihedral:
+      return "squared_dihedral";
+  }
+  return "?";
+}
+
 }  // namespace dot

@@ -8,8 +8,6 @@
 #include <tuple>
 #include <vector>
 
-#include "search_space/delaunay3d.h"
-
 namespace dot {
 
 std::string FormatVec(const Vec3& v) {

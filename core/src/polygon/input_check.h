@@ -8,8 +8,9 @@
 
 #include <string>
 
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 #include "polygon/plane_fit.h"
 
 namespace dot {

@@ -104,4 +104,30 @@ std::vector<Vec3> MakeCurve(Curve c, int n) {
   return {};
 }
 
+std::string_view CurveName(Curve c) {
+  switch (c) {
+    case Curve::kMonkey:
+      return "monkey";
+    case Curve::kMobius:
+      return "mobius";
+    case Curve::kSpiral:
+      return "spiral";
+    case Curve::kMoment:
+      return "moment";
+    case Curve::kTwist:
+      return "twist";
+    case Curve::kTrefoil:
+      return "trefoil";
+  }
+  return "?";
+}
+
+std::optional<Curve> CurveFromName(std::string_view name) {
+  for (Curve c : {Curve::kMonkey, Curve::kMobius, Curve::kSpiral,
+                  Curve::kMoment, Curve::kTwist, Curve::kTrefoil}) {
+    if (CurveName(c) == name) return c;
+  }
+  return std::nullopt;
+}
+
 }  // namespace dot

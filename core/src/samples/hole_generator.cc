@@ -8,6 +8,7 @@
 #include <string>
 
 #include "mesh/edge_index.h"
+#include "mesh/normals.h"
 
 namespace dot {
 namespace {
@@ -149,28 +150,20 @@ Status BoundaryLinks(const Growth& g, std::vector<int32_t>* next,
   return OkStatus();
 }
 
-// Per vertex, the sum of area-weighted normals of the triangles that remain.
-std::vector<Vec3> KeptNormals(const Growth& g) {
-  std::vector<Vec3> normal(g.mesh.vertices.size());
-  for (size_t t = 0; t < g.mesh.triangles.size(); ++t) {
-    if (g.in_hole[t]) continue;
-    const Triangle& tri = g.mesh.triangles[t];
-    const Vec3& a = g.mesh.vertices[tri[0]];
-    const Vec3 c =
-        Cross(g.mesh.vertices[tri[1]] - a, g.mesh.vertices[tri[2]] - a);
-    for (int32_t v : tri) normal[v] = normal[v] + c;
-  }
-  return normal;
-}
-
 // Follows the boundary links once around from `first`.
 Status WalkBoundary(const Growth& g, const std::vector<int32_t>& next,
                     int32_t first, int edges, PolygonData* boundary) {
-  const std::vector<Vec3> normal = KeptNormals(g);
+  // Normals of the triangles that remain.
+  const auto topology = BuildMeshTopology(g.mesh);
+  auto position = [&](int32_t id) -> const Vec3& {
+    return g.mesh.vertices[id];
+  };
+  auto removed = [&](int32_t f) { return g.in_hole[f] != 0; };
   int32_t v = first;
   do {
     boundary->vertices.push_back(g.mesh.vertices[v]);
-    boundary->normals.push_back(Normalized(normal[v]));
+    boundary->normals.push_back(Normalized(
+        AreaWeightedNormal(g.mesh, *topology, v, position, removed)));
     v = next[v];
   } while (v != first && v != -1 &&
            static_cast<int>(boundary->vertices.size()) <= edges);

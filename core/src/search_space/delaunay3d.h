@@ -9,16 +9,12 @@
 
 #include <vector>
 
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 #include "polygon/polygon_loop.h"
 
 namespace dot {
-
-// Why a build without TetGen (DOT_WITH_TETGEN=OFF) refuses kTetgen.
-inline constexpr char kNoTetgenMessage[] =
-    "this build has no TetGen backend (built with DOT_WITH_TETGEN=OFF); use "
-    "cgal";
 
 // Fills `faces` (over loop positions) and the tetrahedra/face counts of
 // `stats` with options.delaunay's backend; with options.protect_edges, may

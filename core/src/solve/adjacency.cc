@@ -157,4 +157,13 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
   return OkStatus();
 }
 
+int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle) {
+  // Per candidate: the triangle, its weight, three edge ids, the sort
+  // records (3 x 16 bytes, transient), adjacency lists; per edge (at most
+  // 1.5 per triangle in practice, 3 at worst) offsets, ends and DP entries.
+  int64_t per_triangle = 12 + 8 + 12 + 48 + 12 + 3 * (4 * 4 + 12);
+  if (bi_triangle) per_triangle += 24 + 2 * (8 + 4) + 36;
+  return triangles * per_triangle;
+}
+
 }  // namespace dot

@@ -14,9 +14,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "dot/control.h"
 #include "dot/geometry.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 #include "util/flat_vector.h"
 
 namespace dot {

@@ -13,8 +13,9 @@
 #include <limits>
 #include <vector>
 
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "dot/status.h"
-#include "dot/triangulate.h"
 #include "solve/adjacency.h"
 
 namespace dot {

@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
+#include "dot/control.h"
 #include "dot/elapsed.h"  // IWYU pragma: export
 #include "dot/status.h"
-#include "dot/triangulate.h"
 
 namespace dot {
 

@@ -6,9 +6,9 @@
 #include <filesystem>
 
 #include "dot/dot.h"
-#include "fill/mesh_topology.h"
 #include "fixtures/filled_mesh.h"
 #include "fixtures/meshes.h"
+#include "mesh/topology.h"
 
 namespace dot {
 namespace {

@@ -110,10 +110,9 @@ TEST(DelaunayBackendsTest, ResultReportsTheBackendUsed) {
     EXPECT_TRUE(report.valid())
         << DelaunayBackendName(b) << ": " << report.first_problem;
   }
-  DelaunayBackend parsed;
-  EXPECT_TRUE(ParseDelaunayBackend("tetgen", &parsed));
-  EXPECT_EQ(parsed, DelaunayBackend::kTetgen);
-  EXPECT_FALSE(ParseDelaunayBackend("qhull", &parsed));
+  EXPECT_EQ(DelaunayBackendFromName("tetgen"), DelaunayBackend::kTetgen);
+  EXPECT_EQ(DelaunayBackendFromName("cgal"), DelaunayBackend::kCgal);
+  EXPECT_EQ(DelaunayBackendFromName("qhull"), std::nullopt);
 }
 
 // Found by tests/fuzz/request_fuzz: a coordinate at the bottom of the

@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "dot/triangulate.h"
+#include "dot/control.h"
+#include "dot/problem.h"
 #include "polygon/polygon_loop.h"
 #include "solve/adjacency.h"
 

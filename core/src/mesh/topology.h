@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // What hole filling asks of a mesh, indexed once: the faces around each
 // vertex and the vertices joined to it by an edge (compressed rows).
-#ifndef DOT_CORE_FILL_MESH_TOPOLOGY_H_
-#define DOT_CORE_FILL_MESH_TOPOLOGY_H_
+#ifndef DOT_CORE_MESH_TOPOLOGY_H_
+#define DOT_CORE_MESH_TOPOLOGY_H_
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
-#include "dot/fill_holes.h"
+#include "dot/mesh.h"
 
 namespace dot {
 
@@ -16,6 +17,9 @@ struct MeshTopology {
   std::vector<int32_t> ring_begin, ring;   // vertex v: its neighbours
 };
 
+// Also declared in dot/fill_holes.h, whose per-hole stages take it.
+std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh);
+
 }  // namespace dot
 
-#endif  // DOT_CORE_FILL_MESH_TOPOLOGY_H_
+#endif  // DOT_CORE_MESH_TOPOLOGY_H_

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-#include "search_space/prepared_space.h"
+#include "solve/prepared_space.h"
 
 namespace dot {
 namespace {
@@ -18,10 +18,9 @@ int64_t CapacityBytes(const V& v) {
 
 int64_t PreparedSpace::Bytes() const {
   return static_cast<int64_t>(sizeof(*this)) + CapacityBytes(loop.vertices) +
-         CapacityBytes(loop.normals) +
-         CapacityBytes(loop.edge_normals) + CapacityBytes(loop.ids) +
-         CapacityBytes(triangles) + adjacency.Bytes() +
-         CapacityBytes(unit_normals);
+         CapacityBytes(loop.normals) + CapacityBytes(loop.edge_normals) +
+         CapacityBytes(loop.ids) + CapacityBytes(triangles) +
+         adjacency.Bytes() + CapacityBytes(unit_normals);
 }
 
 std::string SpaceCacheKey(const Problem& problem, const Options& options) {

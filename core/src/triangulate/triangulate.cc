@@ -21,8 +21,8 @@
 #include "search_space/delaunay_cgal.h"
 #include "search_space/forbidden_edges.h"
 #include "search_space/planar_cdt.h"
-#include "search_space/prepared_space.h"
 #include "solve/adjacency.h"
+#include "solve/prepared_space.h"
 #include "solve/solvers.h"
 #include "util/run_control.h"
 
@@ -215,15 +215,6 @@ Status PrepareAll(const MetricWeights& weights, const Chords& forbidden,
 }
 
 }  // namespace
-
-int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle) {
-  // Per candidate: the triangle, its weight, three edge ids, the sort
-  // records (3 x 16 bytes, transient), adjacency lists; per edge (at most
-  // 1.5 per triangle in practice, 3 at worst) offsets, ends and DP entries.
-  int64_t per_triangle = 12 + 8 + 12 + 48 + 12 + 3 * (4 * 4 + 12);
-  if (bi_triangle) per_triangle += 24 + 2 * (8 + 4) + 36;
-  return triangles * per_triangle;
-}
 
 Result Triangulate(const Problem& problem, const Options& options,
                    const Control& control) {

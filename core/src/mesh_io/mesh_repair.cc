@@ -192,6 +192,7 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
     }
     report->vertex_map[i] = it->second;
   }
+  std::vector<int32_t> merged_origin;  // merged face -> soup face
   for (size_t i = 0; i < soup.faces.size(); ++i) {
     if (!ticker.Tick()) return ticker.status();
     const auto& face = soup.faces[i];
@@ -216,9 +217,11 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
     }
     if (f.size() > 3) ++report->triangulated_polygons;
     merged.faces.push_back(std::move(f));
+    merged_origin.push_back(static_cast<int32_t>(i));
   }
   MeshData tri;
-  Status s = TriangulateSoup(merged, control, &tri);
+  std::vector<int32_t> tri_origin;
+  Status s = TriangulateSoup(merged, control, &tri, &tri_origin);
   if (!s.ok()) return s;
   if (!ticker.Poll()) return ticker.status();
   out->vertices = std::move(tri.vertices);
@@ -246,6 +249,7 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
       ++report->duplicate_faces;
     } else {
       out->triangles.push_back(t);
+      report->face_origin.push_back(merged_origin[tri_origin[f]]);
     }
   }
   if (out->triangles.empty()) {

@@ -362,9 +362,10 @@ Status TriangulateSoup(const PolygonSoup& soup, MeshData* out) {
 }
 
 Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
-                       MeshData* out) {
+                       MeshData* out, std::vector<int32_t>* face_of) {
   out->vertices = soup.vertices;
   out->triangles.clear();
+  if (face_of != nullptr) face_of->clear();
   RunTicker ticker(control, "the triangulation of the mesh's polygons");
   for (size_t f = 0; f < soup.faces.size(); ++f) {
     if (soup.faces[f].size() < 3) {
@@ -376,6 +377,9 @@ Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
     const Status s =
         TriangulatePolygon(soup, soup.faces[f], control, &out->triangles);
     if (!s.ok()) return s;
+    if (face_of != nullptr) {
+      face_of->resize(out->triangles.size(), static_cast<int32_t>(f));
+    }
   }
   return OkStatus();
 }

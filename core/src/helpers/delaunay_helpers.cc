@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
+#include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <new>
+#include <type_traits>
 
 extern char** environ;
 
@@ -232,9 +234,11 @@ DelaunayHelperPool::~DelaunayHelperPool() {
   for (Helper& h : helpers_) Kill(&h);
 }
 
-std::vector<pid_t> DelaunayHelperPool::Pids() const {
+static_assert(std::is_same_v<pid_t, int>, "Helper::pid holds a pid_t");
+
+std::vector<int> DelaunayHelperPool::Pids() const {
   std::lock_guard<std::mutex> lock(mu_);
-  std::vector<pid_t> pids;
+  std::vector<int> pids;
   for (const Helper& h : helpers_) {
     if (h.pid > 0) pids.push_back(h.pid);
   }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-#include "fill/mesh_topology.h"
+#include "mesh/topology.h"
 
 #include <algorithm>
 #include <memory>
