@@ -2,6 +2,7 @@
 // FillHoles over a real server on loopback: the mesh streamed in and out
 // (a million faces), bad meshes answered INVALID_ARGUMENT with the server
 // staying up, cancel in the middle of a fill.
+#include <google/protobuf/unknown_field_set.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -128,6 +129,71 @@ TEST(FillHolesServiceTest, BadMeshesAreRefusedNamingTheProblem) {
   const auto ok = client::FillRemote(*s.stub, "after", {}, ToSoup(m), 60);
   ASSERT_TRUE(ok.status.ok()) << ok.status.error_message();
   EXPECT_EQ(ok.report.filled(), 2);
+}
+
+// FILL_ANSWER_PATCHES: only what is new comes back (several messages for
+// a patch larger than a chunk), in the ids as sent, equal to the local
+// answer; loops_through names the holes to fill.
+TEST(FillHolesServiceTest, PatchesOfTheNamedLoopsComeBackAsComputedLocally) {
+  auto config = LoopbackConfig();
+  config.service.chunk_bytes = 1024;  // patches continue over messages
+  auto s = StartServer(config);
+  const MeshData m = HoleyTorus(200, 100, 4);
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(m, &loops).ok());
+  ASSERT_EQ(loops.size(), 4u);
+  v1::FillOptions options;
+  options.set_answer(v1::FILL_ANSWER_PATCHES);
+  options.add_loops_through(static_cast<uint32_t>(loops[0].vertices[0]));
+  options.add_loops_through(static_cast<uint32_t>(loops[2].vertices[7]));
+  const PolygonSoup soup = ToSoup(m);
+  const auto remote = client::FillRemote(*s.stub, "p", options, soup, 120);
+  ASSERT_TRUE(remote.status.ok()) << remote.status.error_message();
+  const auto local = client::FillLocal("p", options, soup);
+  ASSERT_TRUE(local.status.ok()) << local.status.error_message();
+  EXPECT_TRUE(remote.mesh.vertices.empty());  // no whole mesh
+  EXPECT_EQ(remote.report.filled(), 2);
+  ASSERT_EQ(remote.patches.size(), 2u);
+  ASSERT_EQ(local.patches.size(), 2u);
+  int32_t next = static_cast<int32_t>(m.vertices.size());
+  for (size_t k = 0; k < 2; ++k) {
+    const SentPatch& r = remote.patches[k];
+    EXPECT_EQ(r.hole, k == 0 ? 0 : 2);
+    EXPECT_EQ(r.first_vertex, next);
+    next += static_cast<int32_t>(r.new_vertices.size());
+    EXPECT_EQ(r.hole, local.patches[k].hole);
+    EXPECT_EQ(r.faces, local.patches[k].faces);
+    EXPECT_EQ(r.replaced_faces, local.patches[k].replaced_faces);
+    ASSERT_EQ(r.new_vertices.size(), local.patches[k].new_vertices.size());
+    for (size_t v = 0; v < r.new_vertices.size(); ++v) {
+      EXPECT_EQ(r.new_vertices[v], local.patches[k].new_vertices[v]);
+    }
+  }
+  for (const v1::HoleReport& h : remote.report.holes()) {
+    EXPECT_EQ(h.status(), h.id() == 0 || h.id() == 2 ? v1::HOLE_STATUS_FILLED
+                                                     : v1::HOLE_STATUS_SKIPPED);
+  }
+}
+
+// Before dot.v1 revision 2 the mesh came in fields 3-5 of the request: an
+// old client is told, not answered with an empty mesh.
+TEST(FillHolesServiceTest, AnUploadInTheOldFieldsIsRefusedByName) {
+  auto s = StartServer(LoopbackConfig());
+  v1::FillHolesRequest old;
+  old.GetReflection()->MutableUnknownFields(&old)->AddLengthDelimited(
+      3, std::string(72, '\0'));
+  const grpc::Status st = SendRaw(*s.stub, {old});
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("revision 2"), std::string::npos)
+      << st.error_message();
+  // Slices out of order are named too.
+  v1::FillHolesRequest first = Message({0, 0, 0, 1, 0, 0, 0, 1, 0}, {});
+  v1::FillHolesRequest gap = Message({0, 0, 1}, {});
+  gap.mutable_mesh()->set_first_vertex(7);
+  const grpc::Status order = SendRaw(*s.stub, {first, gap});
+  EXPECT_NE(order.error_message().find("starts at vertex 7 but 3 vertices"),
+            std::string::npos)
+      << order.error_message();
 }
 
 TEST(FillHolesServiceTest, LimitsAndCancel) {

@@ -4,7 +4,10 @@
 // of range are refused by the core, before any work, naming the field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 
 #include "dot/dot.h"
 #include "fixtures/meshes.h"
@@ -98,6 +101,145 @@ TEST(FillSoupTest, OptionsOutOfRangeAreRefusedBeforeAnyWork) {
     EXPECT_EQ(direct.status.message, check.message);
   }
   EXPECT_TRUE(CheckFillOptions(FillOptions{}).ok());
+}
+
+// The soup as the client keeps it, with the patches added: new vertices
+// appended (checked to be numbered on), replaced faces swapped for their
+// replacements, patch faces appended.
+PolygonSoup ApplyPatches(const PolygonSoup& soup,
+                         const std::vector<SentPatch>& patches) {
+  PolygonSoup out = soup;
+  std::map<int32_t, std::vector<Triangle>> replaced;
+  for (const SentPatch& p : patches) {
+    EXPECT_EQ(p.first_vertex, static_cast<int32_t>(out.vertices.size()));
+    out.vertices.insert(out.vertices.end(), p.new_vertices.begin(),
+                        p.new_vertices.end());
+    for (size_t k = 0; k < p.replaced_faces.size(); ++k) {
+      replaced[p.replaced_faces[k]] = p.replacements[k];
+    }
+  }
+  out.faces.clear();
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    if (!replaced.count(static_cast<int32_t>(f))) {
+      out.faces.push_back(soup.faces[f]);
+    }
+  }
+  auto add = [&](const Triangle& t) {
+    out.faces.push_back({t[0], t[1], t[2]});
+  };
+  for (const auto& [face, triangles] : replaced) {
+    for (const Triangle& t : triangles) add(t);
+  }
+  for (const SentPatch& p : patches) {
+    for (const Triangle& t : p.faces) add(t);
+  }
+  return out;
+}
+
+// Triangles as a sorted list, each rotated to start at its smallest id:
+// the same faces in any order.
+std::vector<Triangle> Canonical(std::vector<Triangle> faces) {
+  for (Triangle& t : faces) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+// The oracle: the sent soup with the patches applied, repaired as the
+// server repaired the original, is the mesh of the whole-mesh answer.
+void ExpectPatchesRebuildTheFill(const PolygonSoup& soup,
+                                 const FillOptions& options, const char* name) {
+  const SoupFillResult r = FillSoup(soup, options);
+  ASSERT_TRUE(r.fill.status.ok()) << name << ": " << r.fill.status.message;
+  ASSERT_GT(r.fill.report.filled, 0) << name;
+  const auto patches =
+      PatchesAsSent(r, static_cast<int64_t>(soup.vertices.size()));
+  EXPECT_EQ(patches.size(), static_cast<size_t>(r.fill.report.filled)) << name;
+  MeshData rebuilt;
+  RepairReport repair;
+  ASSERT_TRUE(RepairMesh(ApplyPatches(soup, patches), &rebuilt, &repair).ok())
+      << name;
+  ASSERT_EQ(rebuilt.vertices.size(), r.fill.mesh.vertices.size()) << name;
+  for (size_t v = 0; v < rebuilt.vertices.size(); ++v) {
+    ASSERT_EQ(rebuilt.vertices[v], r.fill.mesh.vertices[v]) << name << " " << v;
+  }
+  EXPECT_EQ(Canonical(rebuilt.triangles), Canonical(r.fill.mesh.triangles))
+      << name;
+}
+
+TEST(FillSoupTest, PatchesInTheSentIdsRebuildTheFilledMesh) {
+  // Merged duplicates: patch faces name each vertex by its first copy.
+  ExpectPatchesRebuildTheFill(DuplicatedSoup(), {}, "duplicated grid");
+  // Edge protection splits faces next to the shark's holes: each comes
+  // back as a replaced face, quads of the file's soup included.
+  const std::string path = testing::MeshPath("mech-holes-shark.off");
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
+  PolygonSoup shark;
+  ASSERT_TRUE(ReadPolygonSoupFile(path, &shark).ok());
+  FillOptions o;
+  o.stage = FillStage::kTriangulate;
+  const SoupFillResult r = FillSoup(shark, o);
+  size_t replaced = 0;
+  for (const SentPatch& p :
+       PatchesAsSent(r, static_cast<int64_t>(shark.vertices.size()))) {
+    replaced += p.replaced_faces.size();
+  }
+  EXPECT_GT(replaced, 0u);
+  ExpectPatchesRebuildTheFill(shark, o, "shark");
+}
+
+TEST(FillSoupTest, LoopsThroughAVertexFillExactlyThoseLoops) {
+  const MeshData torus = testing::HoleyTorus(60, 30, 3, 40);
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(torus, &loops).ok());
+  ASSERT_EQ(loops.size(), 3u);
+  FillOptions o;
+  o.stage = FillStage::kTriangulate;
+  o.selection.through_vertices = {loops[1].vertices[3]};
+  PolygonSoup soup{torus.vertices, {}};
+  for (const Triangle& t : torus.triangles)
+    soup.faces.push_back({t[0], t[1], t[2]});
+  const SoupFillResult r = FillSoup(soup, o);
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  ASSERT_EQ(r.fill.report.holes.size(), 3u);
+  for (const HoleReport& h : r.fill.report.holes) {
+    EXPECT_EQ(h.status, h.id == 1 ? HoleStatus::kFilled : HoleStatus::kSkipped)
+        << h.id << ": " << h.reason;
+    if (h.id != 1) {
+      EXPECT_EQ(h.reason, "through none of the requested vertices");
+    }
+  }
+  // Two named loops, one vertex each; duplicates are harmless.
+  o.selection.through_vertices = {loops[0].vertices[0], loops[2].vertices[5],
+                                  loops[2].vertices[6]};
+  EXPECT_EQ(FillSoup(soup, o).fill.report.filled, 2);
+  // A vertex on no border, and one that is not in the mesh, are named.
+  o.selection.through_vertices = {0};
+  const bool zero_on_border =
+      std::any_of(loops.begin(), loops.end(), [](const HoleLoop& l) {
+        return std::count(l.vertices.begin(), l.vertices.end(), 0) > 0;
+      });
+  ASSERT_FALSE(zero_on_border);
+  Status s = FillSoup(soup, o).fill.status;
+  EXPECT_EQ(s.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message.find("vertex 0 is on no border loop"), std::string::npos)
+      << s.message;
+  o.selection.through_vertices = {static_cast<int32_t>(soup.vertices.size())};
+  s = FillSoup(soup, o).fill.status;
+  EXPECT_NE(s.message.find("is not a vertex of the mesh"), std::string::npos)
+      << s.message;
+}
+
+TEST(FillSoupTest, LoopsThroughASecondCopyNameItsMergedVertex) {
+  const PolygonSoup soup = DuplicatedSoup();
+  const auto n = static_cast<int32_t>(soup.vertices.size() / 2);
+  // Grid vertex (3, 3) is on the square hole's rim; name its second copy.
+  FillOptions o;
+  o.selection.through_vertices = {n + 3 * 9 + 3};
+  const SoupFillResult r = FillSoup(soup, o);
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  EXPECT_EQ(r.fill.report.filled, 1);
 }
 
 }  // namespace
