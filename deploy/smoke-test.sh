@@ -18,7 +18,7 @@ build_flags=()
 # podman: host network for apt, Docker image format to keep HEALTHCHECK.
 [ "$engine" = podman ] && build_flags=(--network=host --format docker)
 image=localhost/dot-server:latest lb_image=localhost/dot-lb:latest
-names=(dot-smoke-1 dot-smoke-2 dot-smoke-3 dot-smoke-lb)
+names=(dot-smoke-1 dot-smoke-2 dot-smoke-3 dot-smoke-lb dot-smoke-tls)
 network=dot-smoke
 say() { printf '\n== %s\n' "$*"; }
 cleanup() {  # one at a time: podman's rm gives up on all if one is missing
@@ -116,6 +116,30 @@ else
   echo "FAIL: a large FillHoles did not pass the balancer"; fail=1
 fi
 rm -rf "$big"
+
+say "the image's HEALTHCHECK with TLS on the main port (DOT_TLS_* set)"
+tls=$(mktemp -d)
+openssl req -x509 -newkey rsa:2048 -nodes -keyout "$tls/server.key" \
+  -out "$tls/server.crt" -days 2 -subj /CN=localhost \
+  -addext subjectAltName=DNS:localhost,IP:127.0.0.1 2>/dev/null
+chmod -R a+rX "$tls"
+"$engine" run -d --rm --name dot-smoke-tls -v "$tls:/tls:ro,Z" \
+  -e DOT_TLS_CERT=/tls/server.crt -e DOT_TLS_KEY=/tls/server.key "$image" >/dev/null
+health=unhealthy
+for _ in $(seq 50); do  # the image's own check, as the engine runs it
+  "$engine" healthcheck run dot-smoke-tls >/dev/null 2>&1 && { health=healthy; break; }
+  sleep 0.2
+done
+echo "container with DOT_TLS_CERT and DOT_TLS_KEY: $health"
+[ "$health" = healthy ] || { echo "FAIL: the HEALTHCHECK fails under TLS"; fail=1; }
+if "$engine" exec -e DOT_TLS_CERT= -e DOT_TLS_KEY= -e DOT_TLS_CA=/tls/server.crt \
+    dot-smoke-tls dotctl --server localhost:50051 health; then
+  echo "the TLS port answers a client that trusts its certificate"
+else
+  echo "FAIL: the TLS port does not answer"; fail=1
+fi
+"$engine" rm -f -t 0 dot-smoke-tls >/dev/null 2>&1 || true
+rm -rf "$tls"
 
 say "tearing down"
 cleanup
