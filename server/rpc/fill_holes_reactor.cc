@@ -93,6 +93,7 @@ grpc::Status FillHolesReactor::Accept() {
     auto job =
         runner_->AdmitTask("FillHoles", m.id(), m.options().time_budget_ms(),
                            context_->deadline(), &refused);
+    job->log_detail = "input=incomplete";  // until the fill says more
     {
       std::lock_guard<std::mutex> lock(mu_);
       job_ = std::move(job);
@@ -198,9 +199,10 @@ void FillHolesReactor::StartFill() {
     return;
   }
   job_->on_done = [this] { OnJobDone(); };
-  if (!runner_->StartTask(job_, [this](Job& job, const Control& control) {
-        return Fill(job, control);
-      })) {
+  if (!runner_->Start(job_, /*may_run_here=*/false,
+                      [this](Job& job, const Control& control) {
+                        return Fill(job, control);
+                      })) {
     job_->on_done = nullptr;
     FinishWith(runner_->Overloaded());
   }
@@ -356,6 +358,7 @@ void FillHolesReactor::OnDone() {
     grpc::Status ignored;
     job_ =
         runner_->AdmitTask("FillHoles", "", 0, context_->deadline(), &ignored);
+    job_->log_detail = "input=incomplete";
     if (context_->IsCancelled()) {
       job_->StopForCancel(context_->deadline());
       final_status_ = StoppedStatus(job_->stop);

@@ -53,31 +53,40 @@ JobRunner::JobRunner(const ServiceOptions& options, ComputePool* pool,
       cache_(cache),
       metrics_(metrics) {}
 
-std::shared_ptr<Job> JobRunner::Admit(
-    const v1::TriangulateRequest& request,
-    std::chrono::system_clock::time_point client_deadline, const char* rpc,
+std::shared_ptr<Job> JobRunner::AdmitTask(
+    const char* rpc, const std::string& id, uint32_t budget_ms,
+    std::chrono::system_clock::time_point client_deadline,
     grpc::Status* error) {
   auto job = std::make_shared<Job>();
   *error = grpc::Status::OK;
   job->rpc = rpc;
-  job->id = request.id();
   job->arrived = Clock::now();
-  job->wire = request.options();
-  if (draining_) {
+  job->options = options_.solve;
+  if (id.size() > kMaxRequestIdBytes) {
+    *error = grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "request id has " + std::to_string(id.size()) +
+                              " bytes; at most " +
+                              std::to_string(kMaxRequestIdBytes) + " allowed");
+    return job;
+  }
+  job->id = id;
+  SetDeadline(options_, budget_ms, client_deadline, job.get());
+  if (!Track(job.get())) {
     *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
                           "server is shutting down; retry on another replica");
-    return job;
   }
-  if (request.id().size() > kMaxRequestIdBytes) {
-    job->id.clear();
-    *error =
-        grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                     "request id has " + std::to_string(request.id().size()) +
-                         " bytes; at most " +
-                         std::to_string(kMaxRequestIdBytes) + " allowed");
-    return job;
-  }
-  job->options = options_.solve;
+  return job;
+}
+
+std::shared_ptr<Job> JobRunner::Admit(
+    const v1::TriangulateRequest& request,
+    std::chrono::system_clock::time_point client_deadline, const char* rpc,
+    grpc::Status* error) {
+  auto job = AdmitTask(rpc, request.id(), request.options().time_budget_ms(),
+                       client_deadline, error);
+  job->wire = request.options();
+  if (!error->ok()) return job;
+  // The polygon's own checks.
   const Status shape =
       wire::ProblemFromRequest(request, &job->problem, &job->options);
   if (!shape.ok()) {
@@ -95,74 +104,22 @@ std::shared_ptr<Job> JobRunner::Admit(
   job->options.memory_budget_bytes =
       RequestMemoryBudget(options_, request.options().memory_budget_bytes());
   job->options.all_space_max_vertices = options_.solve.all_space_max_vertices;
-  SetDeadline(options_, request.options().time_budget_ms(), client_deadline,
-              job.get());
-  if (!Track(job.get())) {
-    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                          "server is shutting down; retry on another replica");
-  }
   return job;
 }
 
-std::shared_ptr<Job> JobRunner::AdmitTask(
-    const char* rpc, const std::string& id, uint32_t budget_ms,
-    std::chrono::system_clock::time_point client_deadline,
-    grpc::Status* error) {
-  auto job = std::make_shared<Job>();
-  *error = grpc::Status::OK;
-  job->rpc = rpc;
-  job->arrived = Clock::now();
-  job->options = options_.solve;
-  job->log_detail = "input=incomplete";  // until the task says more
-  if (id.size() > kMaxRequestIdBytes) {
-    *error = grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "request id has " + std::to_string(id.size()) +
-                              " bytes; at most " +
-                              std::to_string(kMaxRequestIdBytes) + " allowed");
-    return job;
-  }
-  job->id = id;
-  SetDeadline(options_, budget_ms, client_deadline, job.get());
-  if (draining_ || !Track(job.get())) {
-    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                          "server is shutting down; retry on another replica");
-  }
-  return job;
-}
-
-bool JobRunner::StartTask(const std::shared_ptr<Job>& job,
-                          std::function<Status(Job&, const Control&)> work) {
-  const bool queued = pool_->TrySubmit(
-      [this, job, work = std::move(work)] {
-        job->started = Clock::now();
-        metrics_->queue_depth().Set(pool_->queued());
-        metrics_->busy_threads().Set(pool_->busy());
-        if (job->cancel) {
-          job->result.status =
-              MakeStatus(StatusCode::kCancelled, "cancelled while queued");
-        } else if (job->started >= job->deadline) {
-          job->result.status = MakeStatus(StatusCode::kDeadlineExceeded,
-                                          "deadline passed in the queue");
-        } else {
-          try {
-            job->result.status = work(*job, ControlFor(*job));
-          } catch (const std::exception& e) {  // bad_alloc above all
-            job->result.status =
-                MakeStatus(StatusCode::kResourceExhausted,
-                           std::string("computation failed: ") + e.what());
-          }
-        }
-        job->finished = Clock::now();
-        NoteDeadline(*job);
-        ReturnFreedMemory();
-        job->ran = true;
-        metrics_->busy_threads().Set(std::max(0, pool_->busy() - 1));
-        std::function<void()> done = std::move(job->on_done);
-        done();
-      },
-      Lane::kLarge);
-  metrics_->queue_depth().Set(pool_->queued());
-  return queued;
+JobRunner::Work JobRunner::TriangulateWork() {
+  return [this](Job& job, const Control& job_control) {
+    Control control = job_control;
+    if (!job.wire.no_cache()) control.space_cache = cache_;
+    job.result = dot::Triangulate(job.problem, job.options, control);
+    // Counted when the request got as far as a search space.
+    if (control.space_cache != nullptr &&
+        job.result.space_used != SpaceUsed::kNone) {
+      metrics_->CacheLookup(job.result.stats.cache_hit,
+                            control.space_cache->counters());
+    }
+    return job.result.status;
+  };
 }
 
 bool JobRunner::Track(Job* job) {
@@ -180,16 +137,22 @@ void JobRunner::Untrack(const Job* job) {
   metrics_->inflight().Set(inflight_);
 }
 
-bool JobRunner::Start(const std::shared_ptr<Job>& job, bool may_run_here) {
-  if (may_run_here && pool_->TryRunHere([this, &job] { Run(*job); })) {
+bool JobRunner::Start(const std::shared_ptr<Job>& job, bool may_run_here,
+                      Work work) {
+  if (!work) work = TriangulateWork();
+  if (may_run_here &&
+      pool_->TryRunHere([this, &job, &work] { Run(*job, work); })) {
     return true;
   }
+  // Polygons by size; other work (a whole mesh) is large.
   const Lane lane =
-      job->problem.vertices.size() >=
-              static_cast<size_t>(options_.large_lane_min_vertices)
+      job->problem.vertices.empty() ||
+              job->problem.vertices.size() >=
+                  static_cast<size_t>(options_.large_lane_min_vertices)
           ? Lane::kLarge
           : Lane::kSmall;
-  const bool queued = pool_->TrySubmit([this, job] { Run(*job); }, lane);
+  const bool queued = pool_->TrySubmit(
+      [this, job, work = std::move(work)] { Run(*job, work); }, lane);
   metrics_->queue_depth().Set(pool_->queued());
   return queued;
 }
@@ -244,43 +207,36 @@ Control JobRunner::ControlFor(Job& job) {
   return control;
 }
 
-void JobRunner::Run(Job& job) {
+void JobRunner::Run(Job& job, const Work& work) {
   job.started = Clock::now();
   metrics_->queue_depth().Set(pool_->queued());
   metrics_->busy_threads().Set(pool_->busy());
-  Result result;
   if (job.cancel) {
-    result.status =
+    job.result.status =
         MakeStatus(StatusCode::kCancelled, "cancelled while queued");
   } else if (job.started >= job.deadline) {
-    result.status = MakeStatus(StatusCode::kDeadlineExceeded,
-                               "deadline passed in the queue");
+    job.result.status = MakeStatus(StatusCode::kDeadlineExceeded,
+                                   "deadline passed in the queue");
   } else {
-    Control control = ControlFor(job);
-    if (!job.wire.no_cache()) control.space_cache = cache_;
     try {
-      result = dot::Triangulate(job.problem, job.options, control);
-      // Counted when the request got as far as a search space.
-      if (control.space_cache != nullptr &&
-          result.space_used != SpaceUsed::kNone) {
-        metrics_->CacheLookup(result.stats.cache_hit,
-                              control.space_cache->counters());
-      }
+      const Status status = work(job, ControlFor(job));
+      job.result.status = status;
     } catch (const std::exception& e) {  // bad_alloc above all
-      result = {};
-      result.status =
+      job.result = {};
+      job.result.status =
           MakeStatus(StatusCode::kResourceExhausted,
                      std::string("computation failed: ") + e.what());
     }
   }
-  job.result = std::move(result);
   job.finished = Clock::now();
   NoteDeadline(job);
+  // Only after large work: the check walks the heap.
   const Stats& st = job.result.stats;
-  if (st.estimated_bytes > options_.malloc_keep_bytes / 8 ||
+  if (job.problem.vertices.empty() ||
+      st.estimated_bytes > options_.malloc_keep_bytes / 8 ||
       st.tetrahedra > 1000000 ||
       job.result.status.code == StatusCode::kResourceExhausted) {
-    ReturnFreedMemory();  // only after large requests: it walks the heap
+    ReturnFreedMemory();
   }
   job.ran = true;
   // The slot is released after this returns; count it free already, so the

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// One polygon's life in the service, shared by every RPC that solves
-// polygons: admission (drain, shape, limits, deadline), a run on the
-// compute pool or inline, and the completion callback that hands the result
-// back to the RPC's reactor. A reactor answers its job only after the job's
+// One call's life in the service, shared by every RPC: admission (drain,
+// id, deadline; a polygon's shape and limits), a run on the compute pool or
+// inline, and the completion callback that hands the result back to the
+// RPC's reactor. A reactor answers its job only after the job's
 // on_done has run, so a job never outlives the reactor it calls.
 #ifndef DOT_SERVER_RPC_JOB_H_
 #define DOT_SERVER_RPC_JOB_H_
@@ -95,32 +95,34 @@ class JobRunner {
             DelaunayHelperPool* helpers, SpaceCache* cache,
             ServerMetrics* metrics);
 
-  // The job for `request`. When `error` is not OK the job was refused
-  // (draining, malformed, over a limit) and must not be started; it is
-  // still answered (Answered) so the refusal is counted and logged.
-  // `deadline` is the client's RPC deadline.
-  std::shared_ptr<Job> Admit(const v1::TriangulateRequest& request,
-                             std::chrono::system_clock::time_point deadline,
-                             const char* rpc, grpc::Status* error);
-
-  // Admission of a call that is not one polygon (FillHoles): drain, id and
-  // deadline checks; the job carries its cancel flag and deadline and is
-  // answered, counted and logged like the others.
+  // Admission, one path for every call: drain, id, the deadline (the
+  // smallest of the server's limit, `budget_ms` and the client's RPC
+  // `deadline`), tracking for drains. When `error` is not OK the job was
+  // refused and must not be started; it is still answered (Answered) so
+  // the refusal is counted and logged. For calls that are not one polygon
+  // (FillHoles), which set log_detail themselves.
   std::shared_ptr<Job> AdmitTask(const char* rpc, const std::string& id,
                                  uint32_t budget_ms,
                                  std::chrono::system_clock::time_point deadline,
                                  grpc::Status* error);
-  // Runs `work` on the compute pool with the job's Control (cancel,
-  // deadline, TetGen in the helpers); its status lands in
-  // job->result.status, then job->on_done runs. False when the queue is
-  // full.
-  bool StartTask(const std::shared_ptr<Job>& job,
-                 std::function<Status(Job&, const Control&)> work);
+  // AdmitTask, then the polygon's own checks (shape, size) and the
+  // request's memory budget under the server's.
+  std::shared_ptr<Job> Admit(const v1::TriangulateRequest& request,
+                             std::chrono::system_clock::time_point deadline,
+                             const char* rpc, grpc::Status* error);
 
-  // Runs the job: inline on this thread when `may_run_here` and a compute
-  // slot is free (on_done has then run when this returns), else queued.
-  // False when the queue is full: the job never runs, on_done is not called.
-  bool Start(const std::shared_ptr<Job>& job, bool may_run_here);
+  // What a job computes, on the compute thread, with the job's Control
+  // (cancel, deadline, progress, TetGen and large solves in the helpers);
+  // its status lands in job.result.status.
+  using Work = std::function<Status(Job& job, const Control& control)>;
+  // Runs `work` (empty: Triangulate the job's polygon, with the cache
+  // unless the request says no_cache), then job->on_done: inline on this
+  // thread when `may_run_here` and a compute slot is free (on_done has then
+  // run when this returns), else queued, polygons by size in the small or
+  // large lane, other work in the large one. False when the queue is full:
+  // the work never runs, on_done is not called.
+  bool Start(const std::shared_ptr<Job>& job, bool may_run_here,
+             Work work = {});
   // The status of a Start that returned false.
   grpc::Status Overloaded() const;
 
@@ -151,7 +153,8 @@ class JobRunner {
   const ServiceOptions& options() const { return options_; }
 
  private:
-  void Run(Job& job);
+  void Run(Job& job, const Work& work);
+  Work TriangulateWork();
   // The Control every computation of `job` runs under.
   Control ControlFor(Job& job);
   // Gives memory freed beyond options_.malloc_keep_bytes back to the kernel.
