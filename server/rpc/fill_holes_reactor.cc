@@ -232,57 +232,27 @@ Status FillHolesReactor::Fill(Job& job, const Control& control) {
 }
 
 void FillHolesReactor::OnHole(int done, int total) {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    const auto now = Clock::now();
-    if (writing_ || job_done_ || broken_ || finished_ ||
-        (now - last_progress_ < kProgressInterval && done < total)) {
-      return;
-    }
-    last_progress_ = now;
-    writing_ = true;
-    message_.Clear();
-    message_.set_id(job_->id);
-    v1::FillProgress* p = message_.mutable_progress();
-    p->set_holes_done(done);
-    p->set_holes_total(total);
-    p->set_elapsed_ms(Ms(now - job_->arrived));
-  }
+  // The last hole's report is always written: the client sees done == total.
+  if (!writer_.ClaimProgress(kProgressInterval, done == total)) return;
+  message_.Clear();
+  message_.set_id(job_->id);
+  v1::FillProgress* p = message_.mutable_progress();
+  p->set_holes_done(done);
+  p->set_holes_total(total);
+  p->set_elapsed_ms(Ms(Clock::now() - job_->arrived));
   Write(message_, false);
 }
 
 void FillHolesReactor::OnJobDone() {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    job_done_ = true;
-    if (writing_) return;  // OnWriteDone carries on
-    writing_ = true;
-  }
-  WriteNext();
+  if (writer_.JobDone()) WriteNext();
 }
 
 void FillHolesReactor::OnWriteDone(bool ok) {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    if (!ok) {
-      broken_ = true;
-      if (job_) job_->Stop(StopReason::kClientGone);
-    }
-    if (!job_done_) {  // a progress report; the job carries on
-      writing_ = false;
-      return;
-    }
-  }
-  WriteNext();
+  if (writer_.WriteDone(ok, job_.get())) WriteNext();
 }
 
 void FillHolesReactor::WriteNext() {
-  bool broken;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    broken = broken_;
-  }
-  if (broken) {
+  if (writer_.broken()) {
     FinishWith(StoppedStatus(job_->stop));
     return;
   }
@@ -334,6 +304,7 @@ void FillHolesReactor::FinishWith(const grpc::Status& status) {
     finished_ = true;
     uploading_ = false;
   }
+  writer_.Close();
   final_status_ = status;
   Finish(status);
 }

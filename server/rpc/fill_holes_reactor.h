@@ -21,6 +21,7 @@
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.pb.h"
+#include "rpc/answer_writer.h"
 #include "rpc/job.h"
 #include "wire/fill_wire.h"
 #include "wire/wire.h"
@@ -82,10 +83,7 @@ class FillHolesReactor final
   std::mutex mu_;
   bool uploading_ = true;  // reads go on; the timers may end the call
   bool finished_ = false;  // Finish was called
-  bool writing_ = false;   // a write is in flight
-  bool job_done_ = false;  // on_done has run
-  bool broken_ = false;    // a write failed: the client is gone
-  Clock::time_point last_progress_{};
+  AnswerWriter writer_;
 
   // The answer's writers, made once the job has succeeded.
   std::optional<wire::MeshChunker> chunks_;

@@ -39,55 +39,27 @@ TriangulateReactor::TriangulateReactor(JobRunner* runner,
 }
 
 void TriangulateReactor::OnProgress(const v1::Progress& progress) {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    const auto now = Clock::now();
-    const auto interval =
-        std::chrono::milliseconds(job_->wire.progress_interval_ms());
-    if (writing_ || job_done_ || broken_ || now - last_progress_ < interval) {
-      return;  // the next report comes within ~50 ms
-    }
-    last_progress_ = now;
-    writing_ = true;
-    message_.Clear();
-    message_.set_id(job_->id);
-    *message_.mutable_progress() = progress;
+  // The next report comes within ~50 ms when this one is skipped.
+  if (!writer_.ClaimProgress(
+          std::chrono::milliseconds(job_->wire.progress_interval_ms()))) {
+    return;
   }
+  message_.Clear();
+  message_.set_id(job_->id);
+  *message_.mutable_progress() = progress;
   Write(false);
 }
 
 void TriangulateReactor::OnJobDone() {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    job_done_ = true;
-    if (writing_) return;  // OnWriteDone carries on
-    writing_ = true;
-  }
-  WriteNext();
+  if (writer_.JobDone()) WriteNext();
 }
 
 void TriangulateReactor::OnWriteDone(bool ok) {
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    if (!ok) {
-      broken_ = true;
-      job_->Stop(StopReason::kClientGone);
-    }
-    if (!job_done_) {  // a progress report; the job carries on
-      writing_ = false;
-      return;
-    }
-  }
-  WriteNext();
+  if (writer_.WriteDone(ok, job_.get())) WriteNext();
 }
 
 void TriangulateReactor::WriteNext() {
-  bool broken;
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    broken = broken_;
-  }
-  if (broken) {
+  if (writer_.broken()) {
     FinishWith(StoppedStatus(StopReason::kClientGone));
     return;
   }

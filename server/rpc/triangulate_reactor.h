@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "dot/v1/triangulation.pb.h"
+#include "rpc/answer_writer.h"
 #include "rpc/job.h"
 #include "rpc/job_response.h"
 
@@ -45,12 +46,7 @@ class TriangulateReactor final
   std::shared_ptr<Job> job_;
   grpc::Status final_status_;
 
-  std::mutex mu_;
-  bool writing_ = false;   // a write is in flight
-  bool job_done_ = false;  // on_done has run
-  bool broken_ = false;    // a write failed: the client is gone
-  Clock::time_point last_progress_{};
-
+  AnswerWriter writer_;
   std::optional<JobResponse> response_;
   v1::TriangulateResponse message_;  // the message being written
   grpc::ByteBuffer message_bytes_;   // message_, serialized
