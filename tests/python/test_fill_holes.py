@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
-"""Client.fill_holes against a real dot-server: stages, hole selection,
-weights, polygons, large meshes in chunks, errors, cancel."""
+"""Client.fill_holes against a real dot-server: stages, hole selection
+(loops_through too), weights, polygons, large meshes in chunks, the
+report's enum names, errors, cancel."""
 import threading
 import time
 
@@ -10,7 +11,9 @@ import pytest
 
 import dot_client
 from dot_client import wire
-from shapes import border_edges, box_with_hole, grid_with_hole
+from dot_client._proto.dot.v1 import triangulation_pb2 as pb
+from shapes import (border_edges, box_with_hole, bumpy_grid_with_hole,
+                    grid_with_hole, grid_with_holes)
 
 
 def test_fill_a_box(client):
@@ -23,7 +26,7 @@ def test_fill_a_box(client):
     assert r.vertices.dtype == np.float64 and r.faces.dtype == np.int32
     assert r.faces.shape[1] == 3
     rep = r.report
-    assert rep.version == 1 and rep.loops == 1 and rep.filled == 1
+    assert rep.version == 2 and rep.loops == 1 and rep.filled == 1
     assert rep.closed
     assert rep.repair.triangulated_polygons == len(quads)
     assert rep.input_vertices == len(v)
@@ -33,6 +36,7 @@ def test_fill_a_box(client):
     assert border_edges(r.faces) == []  # closed and consistently oriented
     hole = rep.holes[0]
     assert hole.status == "filled" and hole.boundary_vertices == 4
+    assert hole.escalation == "delaunay"
     assert progress and progress[-1].holes_done == progress[-1].holes_total == 1
     assert rep.to_dict()["holes"][0]["status"] == "filled"
 
@@ -68,6 +72,105 @@ def test_hole_selection(client):
         client.fill_holes(v, f, holes=[99])
     assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
     assert "there is no hole 99: the mesh has 2 holes" in e.value.message
+
+
+# Three square holes in a 16 x 16 grid, and the rim.
+HOLES = [(2, 4, 2, 4), (2, 4, 10, 13), (9, 13, 5, 8)]
+
+
+def loop_vertices(vertices, faces):
+    """The border's vertex sets, one per hole of grid_with_holes (the
+    square's corners and edges), and the rim's."""
+    on_border = {v for e in border_edges(faces) for v in e}
+    n = int(round(np.sqrt(len(vertices))))
+    out = []
+    for i0, i1, j0, j1 in HOLES:
+        out.append({i * n + j for i in range(i0, i1 + 1)
+                    for j in range(j0, j1 + 1)} & on_border)
+    out.append(on_border - set().union(*out))
+    return out
+
+
+def test_loops_through_fills_exactly_the_named_loops(client):
+    v, f = grid_with_holes(16, HOLES)
+    loops = loop_vertices(v, f)
+    assert [len(x) for x in loops] == [8, 10, 14, 60]
+    # One vertex of the first hole and one of the third (not corners).
+    named = [2 * 16 + 3, 9 * 16 + 6]
+    assert named[0] in loops[0] and named[1] in loops[2]
+    for stage in ("triangulate", "refine", "fair"):
+        r = client.fill_holes(v, f, stage=stage, loops_through=named)
+        rep = r.report
+        assert (rep.loops, rep.filled, rep.skipped) == (4, 2, 2), stage
+        by_size = {h.boundary_vertices: h for h in rep.holes}
+        assert by_size[8].status == by_size[14].status == "filled"
+        for size in (10, 60):
+            assert by_size[size].status == "skipped"
+            assert by_size[size].reason == \
+                "through none of the requested vertices"
+            assert by_size[size].escalation == ""
+        # The named loops are closed, the others still open.
+        left = {x for e in border_edges(r.faces) for x in e}
+        assert left == loops[1] | loops[3], stage
+    # With the other rules: a loop must pass each one given.
+    r = client.fill_holes(v, f, stage="triangulate", loops_through=named,
+                          max_hole_edges=10)
+    assert [h.boundary_vertices for h in r.report.holes
+            if h.status == "filled"] == [8]
+
+
+def test_loops_through_refusals(client):
+    v, f = grid_with_holes(16, HOLES)
+    with pytest.raises(dot_client.DotError) as e:
+        client.fill_holes(v, f, loops_through=[7 * 16 + 7])  # inside
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "vertex 119 is on no border loop" in e.value.message
+    with pytest.raises(dot_client.InvalidInput) as e:
+        client.fill_holes(v, f, loops_through=[3, 256])
+    assert e.value.message == ("loops_through[1] = 256 is not a vertex of "
+                               "the mesh (it has 256)")
+    with pytest.raises(dot_client.InvalidInput, match="loops_through must be "
+                       "a list of vertex ids"):
+        client.fill_holes(v, f, loops_through=3)
+    with pytest.raises(dot_client.InvalidInput,
+                       match=r"loops_through\[0\] must be between 0"):
+        client.fill_holes(v, f, loops_through=[-1])
+
+
+def test_hole_status_and_escalation_names(client):
+    # Every value of the wire's enums has its readable name.
+    names = {pb.HoleStatus.Name(s): dot_client.HoleReport.from_proto(
+        pb.HoleReport(status=s)).status for s in pb.HoleStatus.values()}
+    assert names == {"HOLE_STATUS_UNSPECIFIED": "unspecified",
+                     "HOLE_STATUS_FILLED": "filled",
+                     "HOLE_STATUS_SKIPPED": "skipped",
+                     "HOLE_STATUS_NO_TRIANGULATION": "no_triangulation",
+                     "HOLE_STATUS_FAILED": "failed"}
+    names = {pb.Escalation.Name(x): dot_client.HoleReport.from_proto(
+        pb.HoleReport(escalation=x)).escalation for x in pb.Escalation.values()}
+    assert names == {"ESCALATION_NONE": "",
+                     "ESCALATION_DELAUNAY": "delaunay",
+                     "ESCALATION_PROTECTED_EDGES": "protected_edges",
+                     "ESCALATION_ALL_TRIANGLES": "all_triangles"}
+    # A value this client does not know reads as its number.
+    assert dot_client.HoleReport.from_proto(pb.HoleReport(status=9)).status \
+        == "9"
+    # Live: edge protection, and a hole no patch can fill.
+    v, f = bumpy_grid_with_hole()
+    r = client.fill_holes(v, f, stage="triangulate", skip_longest=True)
+    hole = [h for h in r.report.holes if h.status == "filled"]
+    assert [(h.escalation, h.split_faces, h.boundary_inserted)
+            for h in hole] == [("protected_edges", [105], 1)]
+    rim = [h for h in r.report.holes if h.status == "skipped"]
+    assert [h.escalation for h in rim] == [""]
+    assert r.report.to_dict()["holes"][hole[0].id]["escalation"] == \
+        "protected_edges"
+    g, gf = grid_with_hole(12)
+    r = client.fill_holes(g, gf, stage="triangulate", loops_through=[0])
+    rim = [h for h in r.report.holes if h.boundary_vertices == 44]
+    assert [(h.status, h.escalation) for h in rim] == \
+        [("no_triangulation", "protected_edges")]
+    assert "not on any Delaunay triangle" in rim[0].reason
 
 
 def test_weights_and_options(client):

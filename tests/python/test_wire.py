@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
-"""dot_client.wire: the MeshAssembler's checks and the FillHoles request
-stream, as proto/wire/wire.cc and fill_wire.cc make and check them."""
+"""dot_client.wire: the MeshAssembler's and PatchReader's checks and the
+FillHoles request stream, as proto/wire/wire.cc and fill_wire.cc make and
+check them."""
 import io
 
 import numpy as np
 import pytest
 
+import dot_client
 from dot_client import wire
 from dot_client._proto.dot.v1 import triangulation_pb2 as pb
 
@@ -76,27 +78,119 @@ def test_finish_refuses():
         a.finish(5, 0, np.zeros((2, 3)))
 
 
-def test_fill_requests_as_make_fill_requests():
+def test_fill_requests_as_fill_request_writer():
     options = pb.FillOptions(stage=pb.FILL_STAGE_REFINE)
     v = np.arange(30, dtype=float).reshape(10, 3)
     f = np.array([[0, 1, 2]] * 7)
     # max_bytes 96: 4 vertices and 19 indices (6 faces) per message.
     m = list(wire.fill_requests("id", options, v, f, max_bytes=96))
-    assert [len(x.vertices) // 3 for x in m] == [4, 4, 2, 0, 0]
-    assert [len(x.faces) // 3 for x in m] == [0, 0, 0, 6, 1]
+    assert [len(x.mesh.vertices) // 3 for x in m] == [4, 4, 2, 0, 0]
+    assert [x.mesh.first_vertex for x in m] == [0, 4, 8, 10, 10]
+    assert [len(x.mesh.triangles) // 3 for x in m] == [0, 0, 0, 6, 1]
+    assert [x.mesh.first_triangle for x in m] == [0, 0, 0, 0, 6]
     assert m[0].id == "id" and m[0].options.stage == pb.FILL_STAGE_REFINE
     assert all(not x.id and not x.HasField("options") for x in m[1:])
-    assert all(not x.face_sizes for x in m)
-    assert np.array_equal(np.concatenate([x.vertices for x in m]), v.ravel())
+    assert all(not x.mesh.face_sizes for x in m)
+    assert np.array_equal(np.concatenate([x.mesh.vertices for x in m]),
+                          v.ravel())
+    # No field of revision 1 (vertices 3, faces 4, face_sizes 5) is set:
+    # every message is id, options and mesh only.
+    for x in m:
+        assert {d.number for d, _ in x.ListFields()} <= {1, 2, 6}
     # Polygons: face sizes sent, a face never split across messages.
     polys = [[0, 1, 2, 3], [0, 1, 2], [4, 5, 6, 7, 8], [1, 2, 3, 4]]
     m = list(wire.fill_requests("id", options, v, polys, max_bytes=48))
-    faces = [x for x in m if x.faces]
+    faces = [x.mesh for x in m if x.mesh.triangles]
     assert [list(x.face_sizes) for x in faces] == [[4, 3], [5, 4]]
+    assert [x.first_triangle for x in faces] == [0, 2]
+    assert all(x.first_vertex == 10 for x in faces)
     quads = np.array([[0, 1, 2, 3]] * 5)
     m = list(wire.fill_requests("id", options, v, quads, max_bytes=48))
-    faces = [x for x in m if x.faces]
+    faces = [x.mesh for x in m if x.mesh.triangles]
     assert [list(x.face_sizes) for x in faces] == [[4, 4], [4, 4], [4]]
+    assert [x.first_triangle for x in faces] == [0, 2, 4]
+    # A polygon larger than a message still goes, alone.
+    m = list(wire.fill_requests("id", options, v, [list(range(10))] * 2,
+                                max_bytes=24))
+    assert [list(x.mesh.face_sizes) for x in m if x.mesh.triangles] == \
+        [[10], [10]]
+
+
+def test_fill_requests_are_made_lazily():
+    # Messages are made as the stream asks for them: the first (vertices)
+    # does not touch the faces yet.
+    touched = []
+
+    class Faces(list):
+        def __iter__(self):
+            touched.append(True)
+            return super().__iter__()
+
+    v = np.zeros((1000, 3))
+    requests = wire.fill_requests("id", pb.FillOptions(), v,
+                                  Faces([[0, 1, 2], [0, 2, 3, 4]]),
+                                  max_bytes=24)
+    first = next(requests)
+    assert first.id == "id" and len(first.mesh.vertices) == 3
+    assert not touched
+    rest = list(requests)
+    assert touched and len(rest) == 999 + 2  # vertex slices, then faces
+
+
+def patch(hole=0, first_vertex=10, vertices=(), faces=(), replaced=()):
+    return pb.HolePatch(hole=hole, first_vertex=first_vertex,
+                        vertices=list(vertices), faces=list(faces),
+                        replaced_faces=[pb.ReplacedFace(face=f, triangles=t)
+                                        for f, t in replaced])
+
+
+def test_patch_reader_joins_continued_patches():
+    r = wire.PatchReader()
+    r.add(patch(4, 10, [1, 1, 1, 2, 2, 2], [0, 1, 10]))
+    r.add(patch(4, 12, [3, 3, 3], [10, 11, 12], [(7, [0, 10, 2, 10, 1, 2])]))
+    r.add(patch(6, 13, [], [5, 6, 7]))
+    a, b = r.finish()
+    assert (a.hole, a.first_vertex, b.hole, b.first_vertex) == (4, 10, 6, 13)
+    assert a.vertices.tolist() == [[1, 1, 1], [2, 2, 2], [3, 3, 3]]
+    assert a.faces.tolist() == [[0, 1, 10], [10, 11, 12]]
+    assert a.faces.dtype == np.int32
+    assert {k: t.tolist() for k, t in a.replaced_faces.items()} == \
+        {7: [[0, 10, 2], [10, 1, 2]]}
+    assert b.vertices.shape == (0, 3) and b.replaced_faces == {}
+
+
+@pytest.mark.parametrize("messages, words", [
+    ([patch(3, 10, [1, 2])],
+     "a patch message of hole 3 has a partial vertex or triangle"),
+    ([patch(3, 10, [], [1, 2])],
+     "a patch message of hole 3 has a partial vertex or triangle"),
+    ([patch(3, 10, [0, 0, 0]), patch(3, 10, [0, 0, 0])],
+     "the patch of hole 3 does not continue where the last message ended"),
+    ([patch(3, 10, [0, 0, 0]), patch(3, 12)],
+     "the patch of hole 3 does not continue where the last message ended"),
+    ([patch(3, 10, [], [], [(5, [1, 2])])],
+     "replaced face 5 has a partial triangle"),
+])
+def test_patch_reader_refuses(messages, words):
+    r = wire.PatchReader()
+    with pytest.raises(wire.AssemblyError) as e:
+        for m in messages:
+            r.add(m)
+    assert str(e.value) == words
+
+
+def test_assemble_patches_needs_a_report():
+    stream = [pb.FillHolesResponse(patch=patch(0, 3, [0, 0, 0], [0, 1, 3]))]
+    with pytest.raises(dot_client.DotError, match="without a report"):
+        wire.assemble_patches(stream)
+    stream.append(pb.FillHolesResponse(report=pb.FillReport(version=2)))
+    (p,) = wire.assemble_patches(stream).patches
+    assert p.faces.tolist() == [[0, 1, 3]]
+    bad = [pb.FillHolesResponse(patch=patch(0, 3, [0, 0])), stream[-1]]
+    with pytest.raises(dot_client.DotError) as e:
+        wire.assemble_patches(bad)
+    assert e.value.message == ("bad mesh from the server: a patch message of "
+                               "hole 0 has a partial vertex or triangle")
 
 
 def test_length_prefixed_round_trip():

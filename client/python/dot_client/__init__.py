@@ -14,22 +14,28 @@ and out::
         print(result.triangles, result.summary.total_cost)
 
 Names exported here are the API other tools script against: :class:`Client`
-(``triangulate``, ``triangulate_many``, ``fill_holes``, ``health``,
-``server_info``), the results (:class:`Result`, :class:`FillResult`,
-:class:`Summary`, :class:`FillReport`, ...), the errors (:class:`DotError`
-and its subclasses :class:`InvalidInput`, :class:`NoTriangulation`) and
+(``triangulate``, ``triangulate_many``, ``fill_holes``, ``fill_patches``,
+``health``, ``server_info``), the options (:class:`TriangulateOptions`,
+:class:`FillOptions`, :class:`Weights` and the presets
+:data:`WEIGHT_PRESETS`), the results (:class:`Result`, :class:`FillResult`,
+:class:`FillPatches`, :class:`HolePatch`, :class:`Summary`,
+:class:`FillReport`, ...), the errors (:class:`DotError` and its
+subclasses :class:`InvalidInput`, :class:`NoTriangulation`) and
 :class:`CancelToken`. The wire helpers live in :mod:`dot_client.wire`.
 """
 from ._errors import DotError, InvalidInput, NoTriangulation
-from ._types import (FillProgress, FillReport, FillResult, HoleReport, Limits,
+from ._types import (WEIGHT_PRESETS, FillOptions, FillPatches, FillProgress,
+                     FillReport, FillResult, HolePatch, HoleReport, Limits,
                      Progress, RepairReport, Result, ServerInfo, Stats,
-                     Summary)
+                     Summary, TriangulateOptions, WeightPreset, Weights)
 from ._client import CancelToken, Client
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "CancelToken", "Client", "DotError", "FillProgress", "FillReport",
-    "FillResult", "HoleReport", "InvalidInput", "Limits", "NoTriangulation",
-    "Progress", "RepairReport", "Result", "ServerInfo", "Stats", "Summary",
+    "CancelToken", "Client", "DotError", "FillOptions", "FillPatches",
+    "FillProgress", "FillReport", "FillResult", "HolePatch", "HoleReport",
+    "InvalidInput", "Limits", "NoTriangulation", "Progress", "RepairReport",
+    "Result", "ServerInfo", "Stats", "Summary", "TriangulateOptions",
+    "WEIGHT_PRESETS", "WeightPreset", "Weights",
 ]

@@ -16,20 +16,12 @@ from ._errors import DotError, InvalidInput, NoTriangulation, from_rpc_error
 from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._proto.dot.v1 import triangulation_pb2_grpc as pb_grpc
 from ._proto.grpc.health.v1 import health_pb2, health_pb2_grpc
-from ._types import (METRICS, FillProgress, FillResult, Progress, Result,
-                     ServerInfo)
+from ._types import (FillOptions, FillPatches, FillProgress, FillResult,
+                     Progress, Result, ServerInfo, TriangulateOptions,
+                     WeightsLike)
 
 ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of tuples, ...
-
-_SEARCH_SPACES = {"auto": pb.SEARCH_SPACE_AUTO,
-                  "delaunay": pb.SEARCH_SPACE_DELAUNAY,
-                  "all": pb.SEARCH_SPACE_ALL}
-_BACKENDS = {"default": pb.DELAUNAY_BACKEND_DEFAULT,
-             "cgal": pb.DELAUNAY_BACKEND_CGAL,
-             "tetgen": pb.DELAUNAY_BACKEND_TETGEN}
-_FILL_STAGES = {"triangulate": pb.FILL_STAGE_TRIANGULATE,
-                "refine": pb.FILL_STAGE_REFINE,
-                "fair": pb.FILL_STAGE_FAIR}
+FaceLike = Union[ArrayLike, Sequence[Sequence[int]]]
 
 # Retry UNAVAILABLE (a replica draining or gone: the call did nothing), as
 # dotctl does. The load-balancing policy stays gRPC's default, pick_first:
@@ -203,14 +195,9 @@ class Client:
             if cancel is not None:
                 cancel._detach(call)
 
-    @staticmethod
-    def _weights(message: Any, values: Dict[str, Any]) -> None:
-        for m in METRICS:
-            setattr(message, m, check.number(m, values[m]))
-
     def _request(self, request_id: str, points: ArrayLike,
-                 normals: Optional[ArrayLike], weights: Dict[str, Any],
-                 options: Dict[str, Any], what: str = "points"
+                 normals: Optional[ArrayLike], options: TriangulateOptions,
+                 progress_interval_ms: int = 0, what: str = "points"
                  ) -> "tuple[Any, np.ndarray]":
         p = check.points(what, points, min_rows=3)
         r = pb.TriangulateRequest(id=request_id)
@@ -224,39 +211,32 @@ class Client:
                     f"{name} has {len(n)} rows; expected one per vertex "
                     f"({len(p)})")
             r.polygon.normals.extend(n.reshape(-1).tolist())
-        self._weights(r.weights, weights)
-        o = r.options
-        o.search_space = _SEARCH_SPACES[check.choice(
-            "search_space", options["search_space"], list(_SEARCH_SPACES))]
-        o.delaunay_backend = _BACKENDS[check.choice(
-            "delaunay_backend", options["delaunay_backend"], list(_BACKENDS))]
-        o.protect_edges = check.flag("protect_edges", options["protect_edges"])
-        o.validate_output = check.flag("validate_output",
-                                       options["validate_output"])
-        o.no_cache = check.flag("no_cache", options["no_cache"])
-        o.time_budget_ms = check.integer("time_budget_ms",
-                                         options["time_budget_ms"])
-        o.memory_budget_bytes = check.integer(
-            "memory_budget_bytes", options["memory_budget_bytes"],
-            maximum=check.UINT64_MAX)
-        o.progress_interval_ms = check.integer(
-            "progress_interval_ms", options.get("progress_interval_ms", 0))
+        options.to_proto(r)
+        r.options.progress_interval_ms = progress_interval_ms
         # The server leaves the input vertices out; they are put back from
         # `p` on arrival (as dotctl does).
-        o.omit_input_vertices = True
+        r.options.omit_input_vertices = True
         return r, p
 
     # -- Triangulate --------------------------------------------------------
 
     def triangulate(self, points: ArrayLike,
                     normals: Optional[ArrayLike] = None, *,
-                    area: float = 0, perimeter: float = 0,
-                    normal_deviation: float = 0, shape: float = 0,
-                    dihedral: float = 0, squared_dihedral: float = 0,
-                    search_space: str = "auto", protect_edges: bool = False,
-                    delaunay_backend: str = "default",
-                    validate_output: bool = False, time_budget_ms: int = 0,
-                    memory_budget_bytes: int = 0, no_cache: bool = False,
+                    options: Optional[TriangulateOptions] = None,
+                    weights: Optional[WeightsLike] = None,
+                    area: Optional[float] = None,
+                    perimeter: Optional[float] = None,
+                    normal_deviation: Optional[float] = None,
+                    shape: Optional[float] = None,
+                    dihedral: Optional[float] = None,
+                    squared_dihedral: Optional[float] = None,
+                    search_space: Optional[str] = None,
+                    protect_edges: Optional[bool] = None,
+                    delaunay_backend: Optional[str] = None,
+                    validate_output: Optional[bool] = None,
+                    time_budget_ms: Optional[int] = None,
+                    memory_budget_bytes: Optional[int] = None,
+                    no_cache: Optional[bool] = None,
                     progress: Optional[Callable[[Progress], None]] = None,
                     progress_interval_ms: int = 100,
                     raise_no_triangulation: bool = True,
@@ -270,9 +250,14 @@ class Client:
         ``normal_deviation`` metric, pointing to the side around which the
         polygon runs counter-clockwise.
 
-        Weights (the objective is their weighted sum; all zero means area;
+        ``options``: a :class:`TriangulateOptions` (None: its defaults).
+        The keyword arguments below, when given (not None), replace its
+        fields: ``weights`` (a :class:`Weights`, a :data:`WEIGHT_PRESETS`
+        name such as ``"smooth"``, or a dict), then each metric weight
+        alone (the objective is their weighted sum; all zero means area;
         a negative weight maximizes): ``area``, ``perimeter``,
-        ``normal_deviation``, ``shape``, ``dihedral``, ``squared_dihedral``.
+        ``normal_deviation``, ``shape``, ``dihedral``,
+        ``squared_dihedral``.
 
         ``search_space``: ``"auto"`` (Delaunay triangles, all triangles for
         small polygons without a Delaunay triangulation), ``"delaunay"``
@@ -295,22 +280,19 @@ class Client:
         ``summary.status`` is ``"no_triangulation"`` and whose arrays are
         empty. Other failures raise :class:`DotError`.
         """
-        weights = dict(area=area, perimeter=perimeter,
-                       normal_deviation=normal_deviation, shape=shape,
-                       dihedral=dihedral, squared_dihedral=squared_dihedral)
-        options = dict(search_space=search_space,
-                       delaunay_backend=delaunay_backend,
-                       protect_edges=protect_edges,
-                       validate_output=validate_output,
-                       time_budget_ms=time_budget_ms,
-                       memory_budget_bytes=memory_budget_bytes,
-                       no_cache=no_cache,
-                       progress_interval_ms=(
-                           check.integer("progress_interval_ms",
-                                         progress_interval_ms, minimum=1)
-                           if progress is not None else 0))
-        request, p = self._request(str(request_id), points, normals, weights,
-                                   options)
+        o = TriangulateOptions.merged(
+            options, weights=weights, area=area, perimeter=perimeter,
+            normal_deviation=normal_deviation, shape=shape,
+            dihedral=dihedral, squared_dihedral=squared_dihedral,
+            search_space=search_space, protect_edges=protect_edges,
+            delaunay_backend=delaunay_backend,
+            validate_output=validate_output, time_budget_ms=time_budget_ms,
+            memory_budget_bytes=memory_budget_bytes, no_cache=no_cache)
+        interval = (check.integer("progress_interval_ms",
+                                  progress_interval_ms, minimum=1)
+                    if progress is not None else 0)
+        request, p = self._request(str(request_id), points, normals, o,
+                                   interval)
         deadline = self._deadline(timeout)
         call = self._stub.Triangulate(request, timeout=deadline)
         result: Result = self._run(
@@ -323,31 +305,39 @@ class Client:
 
     def triangulate_many(self, polygons: Sequence[ArrayLike],
                          normals: Optional[Sequence[Optional[ArrayLike]]] = None,
-                         *, area: float = 0, perimeter: float = 0,
-                         normal_deviation: float = 0, shape: float = 0,
-                         dihedral: float = 0, squared_dihedral: float = 0,
-                         search_space: str = "auto",
-                         protect_edges: bool = False,
-                         delaunay_backend: str = "default",
-                         validate_output: bool = False,
-                         time_budget_ms: int = 0,
-                         memory_budget_bytes: int = 0, no_cache: bool = False,
+                         *, options: Optional[TriangulateOptions] = None,
+                         weights: Optional[WeightsLike] = None,
+                         area: Optional[float] = None,
+                         perimeter: Optional[float] = None,
+                         normal_deviation: Optional[float] = None,
+                         shape: Optional[float] = None,
+                         dihedral: Optional[float] = None,
+                         squared_dihedral: Optional[float] = None,
+                         search_space: Optional[str] = None,
+                         protect_edges: Optional[bool] = None,
+                         delaunay_backend: Optional[str] = None,
+                         validate_output: Optional[bool] = None,
+                         time_budget_ms: Optional[int] = None,
+                         memory_budget_bytes: Optional[int] = None,
+                         no_cache: Optional[bool] = None,
                          progress: Optional[Callable[[int, int, Result],
                                                      None]] = None,
                          timeout: Optional[float] = _DEFAULT,
                          cancel: Optional[CancelToken] = None) -> List[Result]:
         """Many polygons over one TriangulateBatch stream.
 
-        Takes the options of :meth:`triangulate`, applied to every polygon;
-        ``normals`` is None or one entry (an (n, 3) array or None) per
-        polygon. The server works on them concurrently; results come back
-        in input order, one :class:`Result` per polygon. A polygon that
-        fails alone (bad input the server refused, no triangulation) does
-        not fail the call: its Result has ``ok`` False and ``error`` set to
-        a :class:`DotError` (a :class:`NoTriangulation` for the latter).
-        ``progress(done, total, result)`` is called as each result arrives
-        (in arrival order). ``timeout`` bounds the whole stream. A failure
-        of the stream itself raises :class:`DotError`.
+        Takes the options of :meth:`triangulate` (``options`` and the
+        keyword arguments that replace its fields), applied to every
+        polygon; ``normals`` is None or one entry (an (n, 3) array or
+        None) per polygon. The server works on them concurrently; results
+        come back in input order, one :class:`Result` per polygon. A
+        polygon that fails alone (bad input the server refused, no
+        triangulation) does not fail the call: its Result has ``ok`` False
+        and ``error`` set to a :class:`DotError` (a
+        :class:`NoTriangulation` for the latter). ``progress(done, total,
+        result)`` is called as each result arrives (in arrival order).
+        ``timeout`` bounds the whole stream. A failure of the stream itself
+        raises :class:`DotError`.
         """
         if isinstance(polygons, np.ndarray) and polygons.ndim == 2:
             raise InvalidInput("polygons must be a list of (n, 3) arrays; "
@@ -358,22 +348,20 @@ class Client:
             raise InvalidInput(
                 f"normals has {len(normals)} entries; expected one (or None) "
                 f"per polygon ({len(polygons)})")
-        weights = dict(area=area, perimeter=perimeter,
-                       normal_deviation=normal_deviation, shape=shape,
-                       dihedral=dihedral, squared_dihedral=squared_dihedral)
-        options = dict(search_space=search_space,
-                       delaunay_backend=delaunay_backend,
-                       protect_edges=protect_edges,
-                       validate_output=validate_output,
-                       time_budget_ms=time_budget_ms,
-                       memory_budget_bytes=memory_budget_bytes,
-                       no_cache=no_cache)
+        o = TriangulateOptions.merged(
+            options, weights=weights, area=area, perimeter=perimeter,
+            normal_deviation=normal_deviation, shape=shape,
+            dihedral=dihedral, squared_dihedral=squared_dihedral,
+            search_space=search_space, protect_edges=protect_edges,
+            delaunay_backend=delaunay_backend,
+            validate_output=validate_output, time_budget_ms=time_budget_ms,
+            memory_budget_bytes=memory_budget_bytes, no_cache=no_cache)
         requests = []
         inputs = []
         for i, polygon in enumerate(polygons):
             r, p = self._request(
                 str(i), polygon, None if normals is None else normals[i],
-                weights, options, what=f"polygons[{i}]")
+                o, what=f"polygons[{i}]")
             requests.append(r)
             inputs.append(p)
         total = len(requests)
@@ -442,44 +430,62 @@ class Client:
 
     # -- FillHoles ----------------------------------------------------------
 
-    def fill_holes(self, vertices: ArrayLike,
-                   faces: Union[ArrayLike, Sequence[Sequence[int]]], *,
-                   stage: str = "fair", max_hole_edges: int = 0,
-                   max_hole_diameter: float = 0, skip_longest: bool = False,
+    def fill_holes(self, vertices: ArrayLike, faces: FaceLike, *,
+                   options: Optional[FillOptions] = None,
+                   stage: Optional[str] = None,
+                   max_hole_edges: Optional[int] = None,
+                   max_hole_diameter: Optional[float] = None,
+                   skip_longest: Optional[bool] = None,
                    holes: Optional[Sequence[int]] = None,
+                   loops_through: Optional[Sequence[int]] = None,
+                   weights: Optional[WeightsLike] = None,
                    area: Optional[float] = None,
                    perimeter: Optional[float] = None,
                    normal_deviation: Optional[float] = None,
                    shape: Optional[float] = None,
                    dihedral: Optional[float] = None,
                    squared_dihedral: Optional[float] = None,
-                   absolute_weights: bool = False, density: float = 0,
+                   absolute_weights: Optional[bool] = None,
+                   density: Optional[float] = None,
                    fairing_continuity: Optional[int] = None,
-                   no_repair: bool = False, time_budget_ms: int = 0,
-                   memory_budget_bytes: int = 0,
+                   no_repair: Optional[bool] = None,
+                   time_budget_ms: Optional[int] = None,
+                   memory_budget_bytes: Optional[int] = None,
                    progress: Optional[Callable[[FillProgress], None]] = None,
                    request_id: str = "",
                    timeout: Optional[float] = _DEFAULT,
                    cancel: Optional[CancelToken] = None) -> FillResult:
-        """Fills the holes of a mesh (the FillHoles stream).
+        """Fills the holes of a mesh (the FillHoles stream); the whole
+        filled mesh comes back. (:meth:`fill_patches` brings back only
+        what is new.)
 
         ``vertices``: (V, 3) floats; ``faces``: (F, 3) vertex indices, or
         (F, k) polygons, or a list of polygons of any sizes (the server
-        triangulates them). The mesh streams to the server in messages of
-        about 1 MiB, so any size up to the server's limits fits.
+        triangulates them). The mesh streams to the server lazily in
+        MeshChunk slices of about 1 MiB, so any size up to the server's
+        limits fits.
 
-        ``stage``: ``"triangulate"`` (the DOT patch), ``"refine"`` (+ Liepa
-        refinement) or ``"fair"`` (+ fairing: the finished surface).
-        Which holes: ``max_hole_edges`` (0: any), ``max_hole_diameter``
-        (bounding-box diagonal, 0: any), ``skip_longest`` (leave the
-        longest border open), ``holes`` (only these loop ids, as numbered
-        in the report). Weights: leave all None for the hole-filling
-        default (squared dihedral 1, area 0.01, per hole scale), or give
-        some (the others count 0); ``absolute_weights`` keeps area and
-        perimeter in the mesh's units. ``density`` (refinement, 0:
-        sqrt(2)), ``fairing_continuity`` (0, 1 or 2; None: 1),
-        ``no_repair`` (use the mesh exactly as sent: then the output's
-        first V vertices and, except faces listed in a hole's
+        ``options``: a :class:`FillOptions` (None: its defaults, which are
+        the service's). The keyword arguments, when given (not None),
+        replace its fields. ``stage``: ``"triangulate"`` (the DOT patch),
+        ``"refine"`` (+ Liepa refinement) or ``"fair"`` (+ fairing: the
+        finished surface). Which holes: ``max_hole_edges`` (0: any),
+        ``max_hole_diameter`` (bounding-box diagonal, 0: any),
+        ``skip_longest`` (leave the longest border open), ``holes`` (only
+        these loop ids, as numbered in the report), ``loops_through``
+        (only the loops through these vertex ids; a vertex on no border
+        loop is INVALID_ARGUMENT); a hole is filled when it passes every
+        rule given, the others are reported ``"skipped"``. Weights: leave
+        them unset for the hole-filling default (squared dihedral 1, area
+        0.01, per hole scale: the ``"smooth"`` preset), or give
+        ``weights`` (a :class:`Weights`, a :data:`WEIGHT_PRESETS` name or
+        a dict) and/or single metric weights (``area``, ``perimeter``,
+        ``normal_deviation``, ``shape``, ``dihedral``,
+        ``squared_dihedral``: the others count 0); ``absolute_weights``
+        keeps area and perimeter in the mesh's units. ``density``
+        (refinement, 0: sqrt(2)), ``fairing_continuity`` (0, 1 or 2;
+        None: 1), ``no_repair`` (use the mesh exactly as sent: then the
+        output's first V vertices and, except faces listed in a hole's
         ``split_faces``, its first faces are the input's).
 
         ``progress(FillProgress)`` is called as holes are done; an
@@ -488,54 +494,65 @@ class Client:
         Returns a :class:`FillResult` (vertices, faces, report); holes that
         stay open are reported in ``report.holes``, not raised.
         """
+        o = FillOptions.merged(
+            options, stage=stage, max_hole_edges=max_hole_edges,
+            max_hole_diameter=max_hole_diameter, skip_longest=skip_longest,
+            holes=holes, loops_through=loops_through, weights=weights,
+            area=area, perimeter=perimeter,
+            normal_deviation=normal_deviation, shape=shape,
+            dihedral=dihedral, squared_dihedral=squared_dihedral,
+            absolute_weights=absolute_weights, density=density,
+            fairing_continuity=fairing_continuity, no_repair=no_repair,
+            time_budget_ms=time_budget_ms,
+            memory_budget_bytes=memory_budget_bytes)
+        result: FillResult = self._fill(vertices, faces, o, "mesh", progress,
+                                        request_id, timeout, cancel)
+        return result
+
+    def fill_patches(self, vertices: ArrayLike, faces: FaceLike,
+                     options: Optional[FillOptions] = None, *,
+                     progress: Optional[Callable[[FillProgress], None]] = None,
+                     request_id: str = "",
+                     timeout: Optional[float] = _DEFAULT,
+                     cancel: Optional[CancelToken] = None,
+                     **changes: Any) -> FillPatches:
+        """Fills the holes of a mesh and brings back only what is new: one
+        :class:`HolePatch` per filled hole, in the ids of the mesh as sent
+        (FillHoles with ``FILL_ANSWER_PATCHES``), for a caller that keeps
+        its mesh and adds them (:meth:`FillPatches.apply`).
+
+        Takes the arguments of :meth:`fill_holes`: ``options`` (a
+        :class:`FillOptions`) and, as keyword arguments, any of its fields
+        or metric weights, which replace the options' (``stage="refine",
+        loops_through=[17]``). Returns a :class:`FillPatches` (patches,
+        report).
+        """
+        o = FillOptions.merged(options, **changes)
+        patches: FillPatches = self._fill(vertices, faces, o, "patches",
+                                          progress, request_id, timeout,
+                                          cancel)
+        return patches
+
+    def _fill(self, vertices: ArrayLike, faces: FaceLike,
+              options: FillOptions, answer: str,
+              progress: Optional[Callable[[FillProgress], None]],
+              request_id: str, timeout: Any,
+              cancel: Optional[CancelToken]) -> Any:
         v = check.points("vertices", vertices)
         f = check.faces(faces, len(v))
-        options = pb.FillOptions()
-        options.stage = _FILL_STAGES[check.choice("stage", stage,
-                                                  list(_FILL_STAGES))]
-        options.max_hole_edges = check.integer("max_hole_edges", max_hole_edges)
-        options.max_hole_diameter = check.number(
-            "max_hole_diameter", max_hole_diameter, minimum=0)
-        options.skip_longest = check.flag("skip_longest", skip_longest)
-        if holes is not None:
-            if isinstance(holes, (str, bytes)) or not isinstance(
-                    holes, (Sequence, np.ndarray)):
-                raise InvalidInput("holes must be a list of hole ids")
-            options.holes.extend(
-                check.integer(f"holes[{i}]", h, minimum=-2**31,
-                              maximum=2**31 - 1) for i, h in enumerate(holes))
-        given = dict(area=area, perimeter=perimeter,
-                     normal_deviation=normal_deviation, shape=shape,
-                     dihedral=dihedral, squared_dihedral=squared_dihedral)
-        if any(w is not None for w in given.values()):
-            values = {m: (0.0 if w is None else w) for m, w in given.items()}
-            self._weights(options.weights, values)
-            if all(getattr(options.weights, m) == 0 for m in METRICS):
+        for i, vertex in enumerate(options.loops_through):
+            if vertex >= len(v):
                 raise InvalidInput(
-                    "every metric weight is zero; leave them all None for "
-                    "the default")
-        options.absolute_weights = check.flag("absolute_weights",
-                                              absolute_weights)
-        d = check.number("density", density)
-        if d != 0 and not 0.1 <= d <= 100:
-            raise InvalidInput(
-                f"density must be between 0.1 and 100 (0: sqrt(2)); got {d}")
-        options.density = d
-        if fairing_continuity is not None:
-            options.fairing_continuity = check.integer(
-                "fairing_continuity", fairing_continuity, 0, 2)
-        options.no_repair = check.flag("no_repair", no_repair)
-        options.time_budget_ms = check.integer("time_budget_ms",
-                                               time_budget_ms)
-        options.memory_budget_bytes = check.integer(
-            "memory_budget_bytes", memory_budget_bytes,
-            maximum=check.UINT64_MAX)
+                    f"loops_through[{i}] = {vertex} is not a vertex of the "
+                    f"mesh (it has {len(v)})")
+        message = options.to_proto(answer)
         deadline = self._deadline(timeout)
-        requests = wire.fill_requests(str(request_id), options, v, f)
+        requests = wire.fill_requests(str(request_id), message, v, f)
         call = self._stub.FillHoles(requests, timeout=deadline)
-        return self._run(
-            call, cancel,
-            lambda c: wire.assemble_fill(c, on_progress=progress))
+        assemble = (wire.assemble_fill if answer == "mesh"
+                    else wire.assemble_patches)
+        return self._run(call, cancel,
+                         lambda c: assemble(c, on_progress=progress))
 
     # -- Health and info ----------------------------------------------------
 

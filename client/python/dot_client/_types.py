@@ -1,31 +1,62 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
-"""Plain Python mirrors of the dot.v1 messages a caller reads.
+"""Plain Python mirrors of the dot.v1 messages a caller reads, and the
+option objects a caller writes.
 
-Each class mirrors one proto message field by field (see
+Each result class mirrors one proto message field by field (see
 ``proto/dot/v1/triangulation.proto``); enums become lower-case strings
 (``"ok"``, ``"no_triangulation"``, ``"delaunay"``), repeated index fields
 become numpy arrays, metric weights a dict keyed by metric name.
+
+The option classes (:class:`Weights`, :class:`TriangulateOptions`,
+:class:`FillOptions`) are frozen dataclasses with the service's defaults;
+each checks its values when made (raising :class:`InvalidInput`) and
+builds its proto message in one place (``to_proto``), which the client's
+keyword arguments go through too. :data:`WEIGHT_PRESETS` is the one table
+of named metric weights (the Blender add-on's presets are its entries).
 """
 from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional
+from typing import (Any, Dict, List, Mapping, Optional, Sequence, Tuple,
+                    Type, TypeVar, Union)
 
 import numpy as np
 
-from ._errors import DotError
+from . import _validate as check
+from ._errors import DotError, InvalidInput
+from ._proto.dot.v1 import triangulation_pb2 as pb
 
 METRICS = ("area", "perimeter", "normal_deviation", "shape", "dihedral",
            "squared_dihedral")
 
 
-def _enum_name(value: int, enum: Any, prefix: str) -> str:
+def _enum_name(value: int, enum: Any, prefix: str,
+               zero: Optional[str] = None) -> str:
+    """The readable name of a proto enum value: its descriptor's name
+    without ``prefix``, lower case (``HOLE_STATUS_NO_TRIANGULATION`` ->
+    ``"no_triangulation"``); ``zero`` names the value 0 when given (an
+    enum whose 0 means "not set"); a value this client does not know
+    reads as its number."""
+    if value == 0 and zero is not None:
+        return zero
     try:
         name = enum.Name(value)
     except ValueError:
         return str(value)
     return name[len(prefix):].lower() if name.startswith(prefix) else name.lower()
+
+
+def _enum_values(enum: Any, prefix: str,
+                 skip: Sequence[str] = ()) -> Dict[str, int]:
+    """{readable name: value} of a proto enum, from its descriptor (the
+    inverse of :func:`_enum_name`), without the names in ``skip``."""
+    out = {}
+    for name, value in enum.items():
+        short = name[len(prefix):].lower() if name.startswith(prefix) else name.lower()
+        if short not in skip:
+            out[short] = value
+    return out
 
 
 def _scalars(cls: Any, message: Any, **overrides: Any) -> Any:
@@ -117,7 +148,6 @@ class Summary(_Plain):
 
     @classmethod
     def from_proto(cls, m: Any) -> "Summary":
-        from ._proto.dot.v1 import triangulation_pb2 as pb
         return _scalars(
             cls, m,
             status=_enum_name(m.status, pb.ResultStatus, "RESULT_STATUS_"),
@@ -139,7 +169,6 @@ class Progress(_Plain):
 
     @classmethod
     def from_proto(cls, m: Any) -> "Progress":
-        from ._proto.dot.v1 import triangulation_pb2 as pb
         return _scalars(cls, m, stage=_enum_name(m.stage, pb.Stage, "STAGE_"))
 
 
@@ -188,7 +217,11 @@ class RepairReport(_Plain):
 class HoleReport(_Plain):
     """One hole: ``status`` is ``"filled"``, ``"skipped"``,
     ``"no_triangulation"`` or ``"failed"`` (``reason`` says why);
-    ``split_faces`` lists input faces split by edge protection."""
+    ``escalation``, the search step that made the patch, is
+    ``"delaunay"``, ``"protected_edges"``, ``"all_triangles"`` or ``""``
+    (no patch); ``split_faces`` lists input faces split by edge protection.
+    (The wire carries ``status`` and ``escalation`` as the enums
+    ``HoleStatus`` and ``Escalation``; these are their names.)"""
     id: int = 0
     boundary_vertices: int = 0
     pinched: bool = False
@@ -211,7 +244,12 @@ class HoleReport(_Plain):
 
     @classmethod
     def from_proto(cls, m: Any) -> "HoleReport":
-        return _scalars(cls, m, split_faces=list(m.split_faces))
+        return _scalars(
+            cls, m,
+            status=_enum_name(m.status, pb.HoleStatus, "HOLE_STATUS_"),
+            escalation=_enum_name(m.escalation, pb.Escalation, "ESCALATION_",
+                                  zero=""),
+            split_faces=list(m.split_faces))
 
 
 @dataclass
@@ -249,6 +287,97 @@ class FillResult(_Plain):
     vertices: np.ndarray
     faces: np.ndarray
     report: FillReport
+
+
+@dataclass
+class HolePatch(_Plain):
+    """What filling one hole adds to the mesh as it was sent (proto
+    ``HolePatch``, reassembled across messages).
+
+    ``hole``: the :class:`HoleReport` id. ``vertices``: float64 (N, 3), the
+    new vertices, which are ids ``first_vertex`` .. ``first_vertex + N -
+    1`` (numbered on from the sent mesh's vertex count, patch after patch).
+    ``faces``: int32 (M, 3), the new triangles over vertex ids as sent (an
+    id below the sent vertex count is one of the caller's vertices; a
+    duplicate the server's repair merged is named by its first copy).
+    ``replaced_faces``: {sent face id: int32 (K, 3) triangles}, the sent
+    faces edge protection split, each with the triangles that replace all
+    of it.
+    """
+    hole: int
+    first_vertex: int
+    vertices: np.ndarray
+    faces: np.ndarray
+    replaced_faces: Dict[int, np.ndarray] = field(default_factory=dict)
+
+
+FaceList = Union[np.ndarray, List[np.ndarray]]
+
+
+@dataclass
+class FillPatches(_Plain):
+    """The patches answer of FillHoles (:meth:`Client.fill_patches`): one
+    :class:`HolePatch` per filled hole, in the ids of the mesh as sent, and
+    the :class:`FillReport`. The caller keeps its mesh and adds them
+    (:meth:`apply`, or its own code: the Blender add-on adds them to a
+    bmesh)."""
+    patches: List[HolePatch]
+    report: FillReport
+
+    def apply(self, vertices: Any, faces: Any) -> Tuple[np.ndarray, FaceList]:
+        """The sent mesh with the patches added: ``(vertices, faces)``.
+
+        ``vertices`` and ``faces`` must be the mesh as it was sent. The
+        new vertices follow the sent ones; a replaced face is replaced in
+        place by the first of its triangles, the others are appended, then
+        every patch's faces, patch after patch (so a face that was not
+        replaced keeps its index). ``faces`` comes back as an int32
+        (F', 3) array when it was an (F, 3) array, else as a list of int
+        arrays (the sent polygons and the new triangles). Raises
+        :class:`ValueError` when the patches do not fit this mesh.
+        """
+        v = check.points("vertices", vertices)
+        f = check.faces(faces, len(v))
+        parts = [v]
+        count = len(v)
+        for p in self.patches:
+            if p.first_vertex != count:
+                raise ValueError(
+                    f"the patch of hole {p.hole} starts at vertex "
+                    f"{p.first_vertex}, but {count} vertices precede it: "
+                    f"these patches are not of this mesh")
+            parts.append(p.vertices)
+            count += len(p.vertices)
+        replaced: Dict[int, np.ndarray] = {}
+        for p in self.patches:
+            for face, triangles in p.replaced_faces.items():
+                if face in replaced:
+                    raise ValueError(f"face {face} is replaced twice")
+                if not 0 <= face < len(f):
+                    raise ValueError(
+                        f"the patch of hole {p.hole} replaces face {face}, "
+                        f"but the mesh has {len(f)} faces")
+                if len(triangles) == 0:
+                    raise ValueError(f"face {face} is replaced by nothing")
+                replaced[face] = triangles
+        rows: List[np.ndarray] = list(f)
+        appended: List[np.ndarray] = []
+        for face, triangles in replaced.items():
+            rows[face] = triangles[0]
+            appended.extend(triangles[1:])
+        for p in self.patches:
+            appended.extend(p.faces)
+        for t in appended:
+            bad = (t < 0) | (t >= count)
+            if bad.any():
+                raise ValueError(f"a patch face refers to vertex "
+                                 f"{int(t[bad][0])} of {count}")
+        out_vertices = np.concatenate(parts) if len(parts) > 1 else v.copy()
+        if isinstance(f, np.ndarray) and f.shape[1] == 3:
+            out = np.array(rows + appended, dtype=np.int64).reshape(-1, 3)
+            return out_vertices, out.astype(np.int32)
+        return out_vertices, [np.asarray(r, dtype=np.int64)
+                              for r in rows + appended]
 
 
 @dataclass
@@ -295,3 +424,311 @@ class ServerInfo(_Plain):
     def from_proto(cls, m: Any) -> "ServerInfo":
         return _scalars(cls, m, backends=list(m.backends),
                         limits=Limits.from_proto(m.limits))
+
+
+# -- options ---------------------------------------------------------------
+
+
+def _set(obj: Any, name: str, value: Any) -> None:
+    object.__setattr__(obj, name, value)  # a frozen dataclass's own checks
+
+
+@dataclass(frozen=True)
+class Weights(_Plain):
+    """A weight per metric (proto ``MetricWeights``): the objective is the
+    weighted sum. All zero means area alone (Triangulate); a negative
+    weight maximizes that metric. The metrics are defined in
+    ``core/include/dot/metrics.h``."""
+    area: float = 0.0
+    perimeter: float = 0.0
+    normal_deviation: float = 0.0
+    shape: float = 0.0
+    dihedral: float = 0.0
+    squared_dihedral: float = 0.0
+
+    def __post_init__(self) -> None:
+        for m in METRICS:
+            _set(self, m, check.number(m, getattr(self, m)))
+
+    @classmethod
+    def of(cls, value: "WeightsLike", use: str = "triangulate") -> "Weights":
+        """Weights from a :class:`Weights`, the name of a
+        :data:`WEIGHT_PRESETS` entry (its weights for ``use``:
+        ``"triangulate"`` or ``"fill"``) or a mapping ``{metric: weight}``
+        (the metrics it leaves out weigh 0)."""
+        if isinstance(value, Weights):
+            return value
+        if isinstance(value, str):
+            preset = WEIGHT_PRESETS.get(value.lower())
+            if preset is None:
+                raise InvalidInput(
+                    f"there is no weights preset {value!r}; the presets are "
+                    f"{', '.join(WEIGHT_PRESETS)}")
+            return preset.triangulate if use == "triangulate" else preset.fill
+        if isinstance(value, Mapping):
+            unknown = sorted(str(k) for k in value if k not in METRICS)
+            if unknown:
+                raise InvalidInput(
+                    f"unknown metric {', '.join(unknown)} in weights (the "
+                    f"metrics are {', '.join(METRICS)})")
+            return cls(**value)
+        raise InvalidInput(
+            f"weights must be a dot_client.Weights, a preset name "
+            f"({', '.join(WEIGHT_PRESETS)}) or a dict of metric weights; got "
+            f"{type(value).__name__}")
+
+    def is_zero(self) -> bool:
+        """True when every weight is 0."""
+        return all(getattr(self, m) == 0 for m in METRICS)
+
+    def to_proto(self, message: Any) -> None:
+        """Sets the fields of a MetricWeights message."""
+        for m in METRICS:
+            setattr(message, m, getattr(self, m))
+
+
+WeightsLike = Union[Weights, str, Mapping[str, float]]
+
+
+@dataclass(frozen=True)
+class WeightPreset:
+    """Named metric weights (an entry of :data:`WEIGHT_PRESETS`):
+    ``triangulate`` for one polygon's patch (Triangulate), ``fill`` for
+    FillHoles, whose patches also meet the faces around the hole and whose
+    area weight is per hole scale."""
+    label: str
+    description: str
+    triangulate: Weights
+    fill: Weights
+
+
+#: The named weights of the client and the Blender add-on (its presets are
+#: these entries). "smooth" for FillHoles is the service's own default
+#: (FillOptions.weights unset), so choosing it changes nothing there.
+#: Shape is a scale-free tie-break where the main metric has ties (flat
+#: loops).
+WEIGHT_PRESETS: Mapping[str, WeightPreset] = {
+    "minimal_area": WeightPreset(
+        "Minimal Area", "The patch of least area",
+        triangulate=Weights(area=1), fill=Weights(area=1)),
+    "smooth": WeightPreset(
+        "Smooth", "Least squared dihedral angles between the patch's "
+        "triangles (and the faces around a hole): a fair patch",
+        triangulate=Weights(squared_dihedral=1, shape=0.01),
+        fill=Weights(squared_dihedral=1, area=0.01)),
+    "follow_normals": WeightPreset(
+        "Follow Surrounding Normals", "Triangles facing like the surface's "
+        "vertex normals around the loop",
+        triangulate=Weights(normal_deviation=1, shape=0.01),
+        fill=Weights(normal_deviation=1, area=0.01)),
+}
+
+_SEARCH_SPACES = _enum_values(pb.SearchSpace, "SEARCH_SPACE_")
+_BACKENDS = _enum_values(pb.DelaunayBackend, "DELAUNAY_BACKEND_")
+# FILL_STAGE_DEFAULT is fair: the client names the stage it means.
+_FILL_STAGES = _enum_values(pb.FillStage, "FILL_STAGE_", skip=("default",))
+
+_O = TypeVar("_O", bound="_Options")
+
+
+class _Options(_Plain):
+    _weights_use = "triangulate"
+
+    @classmethod
+    def merged(cls: Type[_O], options: Optional[_O] = None,
+               **changes: Any) -> _O:
+        """``options`` (None: the defaults) with ``changes``: fields of
+        this class, and metric names (``area=1``), each replacing that
+        weight of the options' weights (of zero weights when they are
+        unset). A change whose value is None is not given. This is how
+        the client's keyword arguments become options."""
+        if options is None:
+            options = cls()
+        elif not isinstance(options, cls):
+            raise InvalidInput(f"options must be a dot_client.{cls.__name__}; "
+                               f"got {type(options).__name__}")
+        given = {k: v for k, v in changes.items() if v is not None}
+        metrics = {m: given.pop(m) for m in METRICS if m in given}
+        unknown = sorted(set(given) - {f.name for f in dataclasses.fields(cls)})
+        if unknown:
+            raise TypeError(f"{cls.__name__} has no option "
+                            f"{', '.join(unknown)}")
+        if metrics:
+            base = given.get("weights", getattr(options, "weights"))
+            base = Weights() if base is None else Weights.of(
+                base, cls._weights_use)
+            given["weights"] = dataclasses.replace(base, **metrics)
+        return dataclasses.replace(options, **given) if given else options
+
+
+@dataclass(frozen=True)
+class TriangulateOptions(_Options):
+    """How one polygon is triangulated (Triangulate, and each polygon of
+    TriangulateBatch). Every field and its default:
+
+    ``weights``: the objective, a :class:`Weights` (a preset name of
+    :data:`WEIGHT_PRESETS` or a dict of metric weights is taken too).
+    Default all zero: area alone. ``search_space``: ``"auto"`` (Delaunay
+    triangles; all triangles for small polygons without a Delaunay
+    triangulation; default), ``"delaunay"`` (never self-intersects) or
+    ``"all"``. ``protect_edges``: split polygon edges that are not
+    Delaunay (default False). ``delaunay_backend``: ``"default"`` (the
+    server's), ``"cgal"`` or ``"tetgen"``. ``validate_output``: count
+    self-intersecting pairs (default False). ``time_budget_ms``,
+    ``memory_budget_bytes``: lower the server's limits (0, the default:
+    the server's). ``no_cache``: skip the server's search-space cache
+    (default False).
+    """
+    weights: Weights = Weights()
+    search_space: str = "auto"
+    protect_edges: bool = False
+    delaunay_backend: str = "default"
+    validate_output: bool = False
+    time_budget_ms: int = 0
+    memory_budget_bytes: int = 0
+    no_cache: bool = False
+
+    def __post_init__(self) -> None:
+        _set(self, "weights", Weights.of(self.weights, "triangulate"))
+        _set(self, "search_space", check.choice(
+            "search_space", self.search_space, list(_SEARCH_SPACES)))
+        _set(self, "delaunay_backend", check.choice(
+            "delaunay_backend", self.delaunay_backend, list(_BACKENDS)))
+        _set(self, "protect_edges", check.flag("protect_edges",
+                                               self.protect_edges))
+        _set(self, "validate_output", check.flag("validate_output",
+                                                 self.validate_output))
+        _set(self, "no_cache", check.flag("no_cache", self.no_cache))
+        _set(self, "time_budget_ms", check.integer("time_budget_ms",
+                                                   self.time_budget_ms))
+        _set(self, "memory_budget_bytes", check.integer(
+            "memory_budget_bytes", self.memory_budget_bytes,
+            maximum=check.UINT64_MAX))
+
+    def to_proto(self, request: Any) -> None:
+        """Sets ``weights`` and ``options`` of a TriangulateRequest (not
+        ``progress_interval_ms`` and ``omit_input_vertices``: those are the
+        call's)."""
+        self.weights.to_proto(request.weights)
+        o = request.options
+        o.search_space = _SEARCH_SPACES[self.search_space]
+        o.delaunay_backend = _BACKENDS[self.delaunay_backend]
+        o.protect_edges = self.protect_edges
+        o.validate_output = self.validate_output
+        o.no_cache = self.no_cache
+        o.time_budget_ms = self.time_budget_ms
+        o.memory_budget_bytes = self.memory_budget_bytes
+
+
+def _ids(name: str, value: Any, minimum: int, maximum: int) -> Tuple[int, ...]:
+    if value is None:
+        return ()
+    if isinstance(value, (str, bytes)) or not isinstance(
+            value, (Sequence, np.ndarray)):
+        raise InvalidInput(f"{name} must be a list of "
+                           f"{'hole' if name == 'holes' else 'vertex'} ids")
+    return tuple(check.integer(f"{name}[{i}]", h, minimum=minimum,
+                               maximum=maximum) for i, h in enumerate(value))
+
+
+@dataclass(frozen=True)
+class FillOptions(_Options):
+    """How FillHoles fills a mesh. Every field and its default:
+
+    ``stage``: ``"triangulate"`` (the DOT patch), ``"refine"`` (+ Liepa
+    refinement) or ``"fair"`` (+ fairing: the finished surface; default).
+    ``weights``: None (default) for the hole-filling default (squared
+    dihedral 1, area 0.01: the ``"smooth"`` preset), or a :class:`Weights`
+    (a preset name of :data:`WEIGHT_PRESETS` or a dict is taken too; not
+    all zero). ``absolute_weights``: keep area and perimeter in the mesh's
+    units instead of per hole scale (default False).
+
+    Which holes (a hole is filled when it passes every rule given):
+    ``max_hole_edges`` (0, the default: any), ``max_hole_diameter``
+    (bounding-box diagonal; 0: any), ``skip_longest`` (leave the longest
+    border open; default False), ``holes`` (only these loop ids, as
+    numbered in the report; empty: all), ``loops_through`` (only the loops
+    through these vertex ids, as sent; a vertex on no border loop is
+    refused; empty: all).
+
+    ``density``: refinement density factor (0, the default: sqrt(2);
+    else 0.1 .. 100). ``fairing_continuity``: 0, 1 or 2 (None, the
+    default: 1). ``no_repair``: use the mesh exactly as sent (default
+    False: duplicate vertices merged, degenerate and duplicate faces
+    dropped, polygons triangulated, faces oriented). ``time_budget_ms``,
+    ``memory_budget_bytes``: lower the server's limits (0: the server's).
+    """
+    _weights_use = "fill"
+
+    stage: str = "fair"
+    weights: Optional[Weights] = None
+    absolute_weights: bool = False
+    max_hole_edges: int = 0
+    max_hole_diameter: float = 0.0
+    skip_longest: bool = False
+    holes: Tuple[int, ...] = ()
+    loops_through: Tuple[int, ...] = ()
+    density: float = 0.0
+    fairing_continuity: Optional[int] = None
+    no_repair: bool = False
+    time_budget_ms: int = 0
+    memory_budget_bytes: int = 0
+
+    def __post_init__(self) -> None:
+        _set(self, "stage", check.choice("stage", self.stage,
+                                         list(_FILL_STAGES)))
+        if self.weights is not None:
+            w = Weights.of(self.weights, "fill")
+            if w.is_zero():
+                raise InvalidInput(
+                    "every metric weight is zero; leave the weights unset "
+                    "(None) for the default")
+            _set(self, "weights", w)
+        _set(self, "absolute_weights", check.flag("absolute_weights",
+                                                  self.absolute_weights))
+        _set(self, "max_hole_edges", check.integer("max_hole_edges",
+                                                   self.max_hole_edges))
+        _set(self, "max_hole_diameter", check.number(
+            "max_hole_diameter", self.max_hole_diameter, minimum=0))
+        _set(self, "skip_longest", check.flag("skip_longest",
+                                              self.skip_longest))
+        _set(self, "holes", _ids("holes", self.holes, -2**31, 2**31 - 1))
+        _set(self, "loops_through", _ids("loops_through", self.loops_through,
+                                         0, check.UINT32_MAX))
+        d = check.number("density", self.density)
+        if d != 0 and not 0.1 <= d <= 100:
+            raise InvalidInput(
+                f"density must be between 0.1 and 100 (0: sqrt(2)); got {d}")
+        _set(self, "density", d)
+        if self.fairing_continuity is not None:
+            _set(self, "fairing_continuity", check.integer(
+                "fairing_continuity", self.fairing_continuity, 0, 2))
+        _set(self, "no_repair", check.flag("no_repair", self.no_repair))
+        _set(self, "time_budget_ms", check.integer("time_budget_ms",
+                                                   self.time_budget_ms))
+        _set(self, "memory_budget_bytes", check.integer(
+            "memory_budget_bytes", self.memory_budget_bytes,
+            maximum=check.UINT64_MAX))
+
+    def to_proto(self, answer: str = "mesh") -> Any:
+        """The FillOptions message, asking for ``answer``: ``"mesh"`` (the
+        whole filled mesh) or ``"patches"``."""
+        answers = _enum_values(pb.FillAnswer, "FILL_ANSWER_")
+        o = pb.FillOptions(answer=answers[check.choice("answer", answer,
+                                                       list(answers))])
+        o.stage = _FILL_STAGES[self.stage]
+        if self.weights is not None:
+            self.weights.to_proto(o.weights)
+        o.absolute_weights = self.absolute_weights
+        o.max_hole_edges = self.max_hole_edges
+        o.max_hole_diameter = self.max_hole_diameter
+        o.skip_longest = self.skip_longest
+        o.holes.extend(self.holes)
+        o.loops_through.extend(self.loops_through)
+        o.density = self.density
+        if self.fairing_continuity is not None:
+            o.fairing_continuity = self.fairing_continuity
+        o.no_repair = self.no_repair
+        o.time_budget_ms = self.time_budget_ms
+        o.memory_budget_bytes = self.memory_budget_bytes
+        return o

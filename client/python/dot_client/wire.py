@@ -2,10 +2,12 @@
 """The dot.v1 wire format as dotctl speaks it, in Python.
 
 :class:`MeshAssembler` mirrors ``dot::wire::MeshAssembler``
-(``proto/wire/wire.cc``) check for check and message for message;
-:func:`fill_requests` mirrors ``dot::wire::MakeFillRequests``
-(``proto/wire/fill_wire.cc``); :func:`assemble_triangulate` and
-:func:`assemble_fill` read a response stream as ``TriangulateRemote``
+(``proto/wire/wire.cc``) and :class:`PatchReader`
+``dot::wire::PatchReader`` (``proto/wire/fill_wire.cc``) check for check
+and message for message; :func:`fill_requests` mirrors
+``dot::wire::FillRequestWriter`` (``proto/wire/fill_wire.cc``);
+:func:`assemble_triangulate`, :func:`assemble_fill` and
+:func:`assemble_patches` read a response stream as ``TriangulateRemote``
 (``client/remote_call.cc``) and ``FillRemote`` (``client/fill_call.cc``)
 do. The client uses them on live streams; tests replay recorded streams
 (``tests/golden/``) through them, and the C++ tests replay the same files
@@ -14,7 +16,7 @@ through the C++ code, so the two cannot drift apart.
 from __future__ import annotations
 
 import struct
-from typing import (Any, BinaryIO, Callable, Iterable, Iterator, List,
+from typing import (Any, BinaryIO, Callable, Dict, Iterable, Iterator, List,
                     Optional, Sequence, Tuple, Type, TypeVar, Union)
 
 import grpc
@@ -22,8 +24,8 @@ import numpy as np
 
 from ._errors import DotError
 from ._proto.dot.v1 import triangulation_pb2 as pb
-from ._types import (FillProgress, FillReport, FillResult, Progress, Result,
-                     Summary)
+from ._types import (FillPatches, FillProgress, FillReport, FillResult,
+                     HolePatch, Progress, Result, Summary)
 
 #: Requests stay well under gRPC's default 4 MiB message limit (as dotctl).
 REQUEST_BYTES = 1 << 20
@@ -175,16 +177,72 @@ def _finish_triangulate(request_id: str, summary_proto: Any,
                   id=request_id)
 
 
-def assemble_fill(
-        responses: Iterable[Any],
-        on_progress: Optional[Callable[[FillProgress], None]] = None
-) -> FillResult:
-    """The FillResult of a FillHoles response stream that ended OK.
+class PatchReader:
+    """Reassembles the HolePatch messages of a patches answer
+    (``wire::PatchReader``, check for check and message for message): a
+    message with the hole of the last one continues that patch, and its
+    ``first_vertex`` must follow the vertices received so far."""
 
-    Raises :class:`DotError` (``INTERNAL``) when the report is missing or
-    the mesh does not add up, with dotctl's messages.
-    """
+    def __init__(self) -> None:
+        self._patches: List[Dict[str, Any]] = []
+
+    def add(self, m: Any) -> None:
+        """Adds one HolePatch message; raises :class:`AssemblyError` when
+        it does not continue the patches."""
+        if len(m.vertices) % 3 != 0 or len(m.faces) % 3 != 0:
+            raise AssemblyError(f"a patch message of hole {m.hole} has a "
+                                f"partial vertex or triangle")
+        continues = bool(self._patches) and self._patches[-1]["hole"] == m.hole
+        if not continues:
+            self._patches.append({"hole": m.hole,
+                                  "first_vertex": m.first_vertex,
+                                  "count": 0, "vertices": [], "faces": [],
+                                  "replaced": []})
+        p = self._patches[-1]
+        if m.first_vertex != p["first_vertex"] + p["count"]:
+            raise AssemblyError(f"the patch of hole {m.hole} does not "
+                                f"continue where the last message ended")
+        if len(m.vertices):
+            p["vertices"].append(_float_array(m.vertices).reshape(-1, 3))
+            p["count"] += len(m.vertices) // 3
+        if len(m.faces):
+            p["faces"].append(_index_array(m.faces).reshape(-1, 3))
+        for r in m.replaced_faces:
+            if len(r.triangles) % 3 != 0:
+                raise AssemblyError(
+                    f"replaced face {r.face} has a partial triangle")
+            p["replaced"].append(
+                (r.face, _index_array(r.triangles).reshape(-1, 3)))
+
+    def finish(self) -> List[HolePatch]:
+        """The patches, in the order they came. Ids arrive as uint32 and
+        are read as int32, as the C++ client reads them."""
+        def ids(parts: List[np.ndarray]) -> np.ndarray:
+            a = (np.concatenate(parts) if parts
+                 else np.zeros((0, 3), dtype=np.int64))
+            return a.astype(np.int32)
+
+        out = []
+        for p in self._patches:
+            out.append(HolePatch(
+                hole=p["hole"], first_vertex=p["first_vertex"],
+                vertices=(np.concatenate(p["vertices"]) if p["vertices"]
+                          else np.zeros((0, 3))),
+                faces=ids(p["faces"]),
+                replaced_faces={int(face): ids([t])
+                                for face, t in p["replaced"]}))
+        return out
+
+
+def _read_fill(responses: Iterable[Any],
+               on_progress: Optional[Callable[[FillProgress], None]],
+               answer: str) -> Tuple[Any, Any]:
+    """FillRemote's loop over a FillHoles response stream: the report
+    message and the mesh (``answer`` "mesh": vertices, faces) or the
+    patches; raises :class:`DotError` (``INTERNAL``) with dotctl's
+    messages."""
     assembler = MeshAssembler()
+    patches = PatchReader()
     report = None
     assembled: Optional[str] = None
     for message in responses:
@@ -198,24 +256,58 @@ def assemble_fill(
                     assembler.add(message.mesh)
                 except AssemblyError as e:
                     assembled = str(e)
+        elif kind == "patch":
+            if assembled is None:
+                try:
+                    patches.add(message.patch)
+                except AssemblyError as e:
+                    assembled = str(e)
         elif kind == "report":
             report = message.report
     if report is None:
         raise DotError(grpc.StatusCode.INTERNAL,
                        "the server ended the stream without a report")
-    vertices = report.input_vertices + report.added_vertices
-    faces = report.input_faces + report.added_faces
-    mesh = None
-    if assembled is None:
+    out: Any = None
+    if assembled is None and answer == "mesh":
         try:
-            mesh = assembler.finish(vertices, faces)
+            out = assembler.finish(
+                report.input_vertices + report.added_vertices,
+                report.input_faces + report.added_faces)
         except AssemblyError as e:
             assembled = str(e)
-    if assembled is not None or mesh is None:
+    elif assembled is None:
+        out = patches.finish()
+    if assembled is not None:
         raise DotError(grpc.StatusCode.INTERNAL,
                        f"bad mesh from the server: {assembled}")
+    return report, out
+
+
+def assemble_fill(
+        responses: Iterable[Any],
+        on_progress: Optional[Callable[[FillProgress], None]] = None
+) -> FillResult:
+    """The FillResult of a FillHoles response stream (answer
+    ``FILL_ANSWER_MESH``) that ended OK.
+
+    Raises :class:`DotError` (``INTERNAL``) when the report is missing or
+    the mesh does not add up, with dotctl's messages.
+    """
+    report, mesh = _read_fill(responses, on_progress, "mesh")
     return FillResult(vertices=mesh[0], faces=mesh[1],
                       report=FillReport.from_proto(report))
+
+
+def assemble_patches(
+        responses: Iterable[Any],
+        on_progress: Optional[Callable[[FillProgress], None]] = None
+) -> FillPatches:
+    """The FillPatches of a FillHoles response stream (answer
+    ``FILL_ANSWER_PATCHES``) that ended OK: its HolePatch messages
+    reassembled by :class:`PatchReader`. Raises :class:`DotError`
+    (``INTERNAL``) as :func:`assemble_fill` does."""
+    report, patches = _read_fill(responses, on_progress, "patches")
+    return FillPatches(patches=patches, report=FillReport.from_proto(report))
 
 
 FaceInput = Union[np.ndarray, Sequence[Sequence[int]]]
@@ -224,59 +316,70 @@ FaceInput = Union[np.ndarray, Sequence[Sequence[int]]]
 def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
                   faces: Union[np.ndarray, List[np.ndarray]],
                   max_bytes: int = REQUEST_BYTES) -> Iterator[Any]:
-    """The FillHolesRequest stream of a mesh, made lazily.
+    """The FillHolesRequest stream of a mesh, made lazily, message by
+    message (the upload never holds a second copy of the mesh).
 
-    As ``MakeFillRequests``: the first message carries id and options (and
-    the first vertices), vertices fill messages of at most ``max_bytes``
-    // 24 vertices, faces start in a message of their own and fill messages
-    of at most ``max_bytes`` // 5 indices, never splitting a face;
-    ``face_sizes`` is sent only when some face is not a triangle.
-    ``faces`` is an int array (F, k) or a list of int arrays (polygons).
+    As ``FillRequestWriter`` (dot.v1 revision 2): the mesh goes in
+    ``mesh`` (MeshChunk) slices, vertices first, at most ``max_bytes`` //
+    24 per message, each slice's ``first_vertex`` the number of vertices
+    sent before it; then faces, starting in a message of their own, at
+    most ``max_bytes`` // 5 indices per message but never splitting a
+    face, each slice's ``first_triangle`` the number of faces sent before
+    it (and its ``first_vertex`` the vertex count). The first message
+    carries id and options with the first slice. ``face_sizes`` is sent
+    only when some face is not a triangle. ``faces`` is an int array
+    (F, k) or a list of int arrays (polygons).
     """
     vertices_per = max(1, max_bytes // 24)
     indices_per = max(3, max_bytes // 5)
-    first = pb.FillHolesRequest(id=request_id)
-    first.options.CopyFrom(options)
     flat = np.ascontiguousarray(vertices, dtype=np.float64).reshape(-1)
     n = len(flat) // 3
-    message = first
-    done = 0
-    while done < n:
-        if done > 0:
-            yield message
-            message = pb.FillHolesRequest()
-        end = min(n, done + vertices_per)
-        message.vertices.extend(flat[3 * done:3 * end].tolist())
-        done = end
-    yield message
+    first = pb.FillHolesRequest(id=request_id)
+    first.options.CopyFrom(options)
+    pending: Optional[Any] = first  # id and options go with the first slice
+
+    def message() -> Any:
+        nonlocal pending
+        m, pending = (pending or pb.FillHolesRequest()), None
+        return m
+
+    for start in range(0, n, vertices_per):
+        m = message()
+        end = min(n, start + vertices_per)
+        m.mesh.first_vertex = start
+        m.mesh.vertices.extend(flat[3 * start:3 * end].tolist())
+        yield m
     if isinstance(faces, np.ndarray):
         k = faces.shape[1] if faces.ndim == 2 else 3
-        per = indices_per // k  # whole faces per message
-        all_triangles = k == 3
-        rows = np.ascontiguousarray(faces, dtype=np.int64)
+        per = max(1, indices_per // k)  # whole faces per message
+        rows = np.ascontiguousarray(faces, dtype=np.int64).reshape(-1, k)
         for start in range(0, len(rows), per):
-            message = pb.FillHolesRequest()
+            m = message()
             block = rows[start:start + per]
-            message.faces.extend(block.reshape(-1).tolist())
+            m.mesh.first_vertex = n
+            m.mesh.first_triangle = start
+            m.mesh.triangles.extend(block.reshape(-1).tolist())
+            if k != 3:
+                m.mesh.face_sizes.extend([k] * len(block))
+            yield m
+    else:
+        all_triangles = all(len(f) == 3 for f in faces)
+        m, in_message = None, 0
+        for i, face in enumerate(faces):
+            if m is None or in_message + len(face) > indices_per:
+                if m is not None:
+                    yield m
+                m, in_message = message(), 0
+                m.mesh.first_vertex = n
+                m.mesh.first_triangle = i
+            m.mesh.triangles.extend(int(v) for v in face)
             if not all_triangles:
-                message.face_sizes.extend([k] * len(block))
-            yield message
-        return
-    all_triangles = all(len(f) == 3 for f in faces)
-    message = None
-    in_message = indices_per
-    for face in faces:
-        if in_message + len(face) > indices_per:
-            if message is not None:
-                yield message
-            message = pb.FillHolesRequest()
-            in_message = 0
-        message.faces.extend(int(v) for v in face)
-        if not all_triangles:
-            message.face_sizes.append(len(face))
-        in_message += len(face)
-    if message is not None:
-        yield message
+                m.mesh.face_sizes.append(len(face))
+            in_message += len(face)
+        if m is not None:
+            yield m
+    if pending is not None:
+        yield pending  # an empty mesh: id and options alone
 
 
 T = TypeVar("T")
