@@ -2,7 +2,11 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
 """FillHoles uploads that break off, stall or outlive a drain.
 
-Raw bytes to a real dot-server on loopback, each case a defect once seen:
+Raw bytes to a real dot-server on loopback (the mesh in MeshChunk slices,
+field 6, as dot.v1 revision 2 has it), each case a rule of the upload or
+a defect once seen:
+- a revision 1 client (the mesh in fields 3-5) must be refused by name,
+  INVALID_ARGUMENT saying "revision 2", and slices out of order named;
 - a message that does not parse in the middle of the upload ended the
   upload as if the client had half-closed, and the partial mesh was filled
   and answered OK; it must be INVALID_ARGUMENT naming the message;
@@ -17,7 +21,6 @@ Raw bytes to a real dot-server on loopback, each case a defect once seen:
 Usage: fill_raw_messages_test.py PATH/TO/dot-server
 """
 import signal
-import struct
 import sys
 import threading
 import time
@@ -26,17 +29,24 @@ import urllib.request
 import grpc
 
 import raw_wire
-from raw_wire import field, free_port, varint
+from raw_wire import doubles, field, free_port, mesh_chunk, varint
 
 
 def first_message(request_id, time_budget_ms=0):
-    """id, options and one triangle: a mesh with one hole."""
+    """id, options and one triangle in one MeshChunk slice (field 6): a mesh
+    with one hole."""
     options = field(10, 0, varint(time_budget_ms)) if time_budget_ms else b""
-    coordinates = b"".join(struct.pack("<d", c)
-                           for c in (0, 0, 0, 1, 0, 0, 0, 1, 0))
-    faces = b"".join(varint(i) for i in (0, 1, 2))
+    mesh = mesh_chunk(0, (0, 0, 0, 1, 0, 0, 0, 1, 0), 0, (0, 1, 2))
     return (field(1, 2, request_id.encode()) + field(2, 2, options) +
-            field(3, 2, coordinates) + field(4, 2, faces))
+            field(6, 2, mesh))
+
+
+def revision_1_message(request_id):
+    """The same upload as dot.v1 revision 1 sent it: vertices in field 3,
+    faces in field 4 of FillHolesRequest itself."""
+    return (field(1, 2, request_id.encode()) + field(2, 2, b"") +
+            field(3, 2, doubles((0, 0, 0, 1, 0, 0, 0, 1, 0))) +
+            field(4, 2, b"".join(varint(i) for i in (0, 1, 2))))
 
 
 def start(server_path, *flags, metrics_port=0):
@@ -83,6 +93,23 @@ def main():
         expect_error(call, iter([first_message("bad"), b"\xff\xff\xff"]),
                      grpc.StatusCode.INVALID_ARGUMENT,
                      "message 1 of the upload does not parse")
+        # A client of revision 1 (the mesh in fields 3-5) is told to update,
+        # not answered as if it had sent an empty mesh.
+        e = expect_error(call, iter([revision_1_message("old")]),
+                         grpc.StatusCode.INVALID_ARGUMENT, "revision 2")
+        assert "message 0 has fields this server does not know" in \
+            e.details(), e.details()
+        # Slices out of order are named.
+        three = field(6, 2, mesh_chunk(0, (0, 0, 0, 1, 0, 0, 0, 1, 0)))
+        expect_error(call, iter([field(1, 2, b"gap") + three,
+                                 field(6, 2, mesh_chunk(5, (1, 1, 1)))]),
+                     grpc.StatusCode.INVALID_ARGUMENT,
+                     "message 1 starts at vertex 5 but 3 vertices have "
+                     "arrived")
+        expect_error(call, iter([first_message("faces"),
+                                 field(6, 2, mesh_chunk(3, (), 0, (0, 2, 1)))]),
+                     grpc.StatusCode.INVALID_ARGUMENT,
+                     "message 1 starts at face 0 but 1 faces have arrived")
         # An upload that never half-closes ends by the request's budget.
         t0 = time.monotonic()
         expect_error(call, stalled([first_message("idle", 1500)], release),

@@ -1,8 +1,10 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
 """Protobuf wire bytes by hand, and a free loopback port: what the raw
 message tests (batch_raw_messages_test.py, fill_raw_messages_test.py) need
-to send messages that do not parse."""
+to send messages that do not parse, or that use fields a server no longer
+knows."""
 import socket
+import struct
 
 
 def varint(n):
@@ -20,6 +22,25 @@ def field(number, wire_type, payload):
     if wire_type == 2:
         return key + varint(len(payload)) + payload
     return key + payload
+
+
+def doubles(values):
+    """Packed doubles (a repeated double field's payload)."""
+    return b"".join(struct.pack("<d", v) for v in values)
+
+
+def mesh_chunk(first_vertex=0, vertices=(), first_triangle=0, triangles=()):
+    """dot.v1.MeshChunk bytes: first_vertex 1, vertices 2 (packed doubles),
+    first_triangle 3, triangles 4 (packed varints); zeros left out, as
+    protobuf leaves them out."""
+    out = field(1, 0, varint(first_vertex)) if first_vertex else b""
+    if vertices:
+        out += field(2, 2, doubles(vertices))
+    if first_triangle:
+        out += field(3, 0, varint(first_triangle))
+    if triangles:
+        out += field(4, 2, b"".join(varint(i) for i in triangles))
+    return out
 
 
 def free_port():
