@@ -1,30 +1,51 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: AGPL-3.0-or-later
-"""Records the golden response streams of tests/golden/ (run once; commit).
+"""Records the golden streams of tests/golden/ (run once; commit).
 
 Starts build/server/dot-server on a loopback port with 1 KiB mesh chunks
-(--chunk-kb 1, so small meshes still come back in several chunks) and
-records, byte for byte, the response stream of one Triangulate call (a
-noisy 80-vertex saddle rim with edge protection, so the server inserts
-vertices, and with omit_input_vertices, so the client must put the input
-back) and of one FillHoles call (a small sphere with a hole, filled to the
-fair stage). Each
-stream is written as length-prefixed serialized messages (4-byte
-little-endian length, then the bytes): triangulate.stream holds
-dot.v1.TriangulateResponse messages, fill_holes.stream
-dot.v1.FillHolesResponse messages.
+(--chunk-kb 1, so small meshes still come back in several messages) and
+records, byte for byte, the response streams of three calls:
 
-The expected meshes beside them (triangulate.json, fill_holes.json) do not
-come from any stream reassembly: they are what `dotctl ... --local`
-computes in-process (the core library, no wire), written with 17
-significant digits, so exact. The C++ test (tests/client/
+- triangulate.stream: one Triangulate call (a noisy 80-vertex saddle rim
+  with edge protection, so the server inserts vertices, and with
+  omit_input_vertices, so the client must put the input back);
+- fill_holes.stream: one FillHoles call answering the whole mesh (a small
+  sphere with a hole, filled to the fair stage);
+- fill_holes_patches.stream: one FillHoles call answering patches
+  (FILL_ANSWER_PATCHES) for a bumpy grid whose hole needs edge protection
+  (a face beside it is split: a replaced face) and whose faired patch (61
+  new vertices, density 4) continues over several 1 KiB messages; its rim
+  is left open (skip_longest).
+
+Each stream is written as length-prefixed serialized messages (4-byte
+little-endian length, then the bytes): triangulate.stream holds
+dot.v1.TriangulateResponse messages, the fill streams
+dot.v1.FillHolesResponse messages. The FillHoles uploads are recorded too
+(fill_holes.requests, fill_holes_patches.requests: the
+dot.v1.FillHolesRequest messages sent, made by dot_client.wire.fill_requests
+in 1 KiB messages), so the C++ FillRequestWriter can be held to the same
+messages.
+
+The expected results beside them (*.json) do not come from any stream
+reassembly: they are what `dotctl ... --local` computes in-process (the
+core library, no wire), written with 17 significant digits, so exact. The
+expected patches are derived from dotctl's whole filled mesh and its
+report, by the layout the README documents for the result ("The result":
+input vertices first, then each hole's new vertices; input faces keep
+their index, a face split by edge protection is replaced in place by its
+first piece and its other pieces are appended, then each hole's patch):
+the hole's new vertices are the `boundary_inserted + refined_vertices`
+after the input's, its faces the last `patch_triangles`, and the split
+face's replacement its piece in place followed by the appended pieces
+(the recording has one split face, so the appended pieces are all its
+own). Before anything is written, the Python reassembly of each stream
+must give the expected result. The C++ test (tests/client/
 golden_stream_test.cc) and the Python test (tests/python/test_golden.py)
-replay the streams through their reassembly code and must get these meshes
-exactly.
+replay the streams through their reassembly code and must get the same.
 
 Usage: PYTHONPATH=build/client/python scripts/record_golden.py
        [--server build/server/dot-server] [--dotctl build/client/dotctl]
-       [--out tests/golden]
+       [--out tests/golden] [--only triangulate fill_holes ...]
 """
 import argparse
 import json
@@ -40,10 +61,18 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "build", "client", "python"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
 
 import dot_client  # noqa: E402
 from dot_client import wire  # noqa: E402
 from dot_client._proto.dot.v1 import triangulation_pb2 as pb  # noqa: E402
+from shapes import bumpy_grid_with_hole  # noqa: E402
+
+GOLDEN = ["triangulate", "fill_holes", "fill_holes_patches"]
+
+#: FillHoles uploads are recorded in messages of this size, so even the
+#: small golden meshes take several slices of each kind.
+UPLOAD_BYTES = 1024
 
 
 def free_port():
@@ -128,11 +157,88 @@ def kinds(payloads, message_type):
     return [message_type.FromString(p).WhichOneof("payload") for p in payloads]
 
 
+def write_off(path, vertices, faces):
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(vertices)} {len(faces)} 0\n")
+        for p in vertices:
+            f.write(" ".join(repr(float(x)) for x in p) + "\n")
+        for t in faces:
+            f.write("3 " + " ".join(str(int(i)) for i in t) + "\n")
+
+
+def record_fill(channel, request_id, options, vertices, faces):
+    """The upload (FillHolesRequest messages, UPLOAD_BYTES each) and the
+    response bytes of one FillHoles call."""
+    requests = list(wire.fill_requests(request_id, options, vertices, faces,
+                                       max_bytes=UPLOAD_BYTES))
+    responses = [bytes(b) for b in channel.stream_stream(
+        "/dot.v1.Triangulator/FillHoles",
+        request_serializer=pb.FillHolesRequest.SerializeToString,
+        response_deserializer=lambda b: b)(iter(requests), timeout=30)]
+    return [r.SerializeToString() for r in requests], responses
+
+
+def fill_local(dotctl, tmp, name, vertices, faces, flags):
+    """dotctl fill-holes --local: (vertices, faces, report as JSON)."""
+    off = os.path.join(tmp, name + ".off")
+    write_off(off, vertices, faces)
+    filled = os.path.join(tmp, name + ".filled.off")
+    out = subprocess.run([dotctl, "fill-holes", "--local", off, "-o", filled,
+                          "--json", *flags], check=True,
+                         stdout=subprocess.PIPE, text=True).stdout
+    fv, ff = read_off(filled)
+    return fv, ff, json.loads(out)["report"]
+
+
+def patches_of_whole_mesh(fv, ff, report, sent_vertices, sent_faces):
+    """The patches answer, from dotctl's whole filled mesh and report (the
+    layout of README "The result"; see the module's docstring)."""
+    repair = report["repair"]
+    assert not any(repair[k] for k in (
+        "merged_vertices", "degenerate_faces", "duplicate_faces",
+        "triangulated_polygons", "reoriented_faces")), \
+        "the derivation needs a mesh the repair leaves as sent"
+    assert report["input_vertices"] == sent_vertices
+    assert report["input_faces"] == sent_faces
+    filled = [h for h in report["holes"] if h["status"] == "HOLE_STATUS_FILLED"]
+    split = [f for h in filled for f in h["split_faces"]]
+    assert len(split) <= 1, "the derivation assigns appended pieces to one face"
+    pieces = report["added_faces"] - sum(h["patch_triangles"] for h in filled)
+    patches, vertex, face = [], sent_vertices, sent_faces + pieces
+    for h in filled:
+        count = h["boundary_inserted"] + h["refined_vertices"]
+        patch = {"hole": h["id"], "first_vertex": vertex,
+                 "vertices": fv[vertex:vertex + count],
+                 "faces": ff[face:face + h["patch_triangles"]],
+                 "replaced_faces": [
+                     {"face": f, "triangles":
+                      [ff[f]] + ff[sent_faces:sent_faces + pieces]}
+                     for f in h["split_faces"]]}
+        patches.append(patch)
+        vertex += count
+        face += h["patch_triangles"]
+    assert vertex == len(fv) and face == len(ff), "the layout does not add up"
+    return patches
+
+
+def as_patches(doc_patches):
+    return [dot_client.HolePatch(
+        hole=p["hole"], first_vertex=p["first_vertex"],
+        vertices=np.array(p["vertices"], dtype=np.float64).reshape(-1, 3),
+        faces=np.array(p["faces"], dtype=np.int32).reshape(-1, 3),
+        replaced_faces={r["face"]: np.array(r["triangles"], dtype=np.int32)
+                        for r in p["replaced_faces"]})
+        for p in doc_patches]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--server", default=os.path.join(ROOT, "build/server/dot-server"))
     ap.add_argument("--dotctl", default=os.path.join(ROOT, "build/client/dotctl"))
     ap.add_argument("--out", default=os.path.join(ROOT, "tests/golden"))
+    ap.add_argument("--only", nargs="+", choices=GOLDEN, default=GOLDEN,
+                    help="write only these recordings (a stream that did "
+                    "not change keeps its committed bytes)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="dot-golden-")
@@ -196,41 +302,71 @@ def main():
                 "inserted_count": summary.inserted_count,
                 "loop": list(summary.loop)}}
 
-        # FillHoles: options first, the mesh in one more message.
+        # FillHoles, the whole mesh back.
         vertices, faces = sphere_with_hole()
         options = pb.FillOptions(stage=pb.FILL_STAGE_FAIR)
-        requests = list(wire.fill_requests("golden-fill", options, vertices,
-                                           faces))
-        fill = [bytes(b) for b in channel.stream_stream(
-            "/dot.v1.Triangulator/FillHoles",
-            request_serializer=pb.FillHolesRequest.SerializeToString,
-            response_deserializer=raw)(iter(requests), timeout=30)]
-        off = os.path.join(tmp, "mesh.off")
-        with open(off, "w") as f:
-            f.write(f"OFF\n{len(vertices)} {len(faces)} 0\n")
-            for p in vertices:
-                f.write(" ".join(repr(float(x)) for x in p) + "\n")
-            for t in faces:
-                f.write("3 " + " ".join(str(int(i)) for i in t) + "\n")
-        filled = os.path.join(tmp, "filled.off")
-        subprocess.run([args.dotctl, "fill-holes", "--local", off, "-o",
-                        filled, "--stage", "fair", "-q"], check=True)
-        fv, ff = read_off(filled)
+        fill_up, fill = record_fill(channel, "golden-fill", options, vertices,
+                                    faces)
+        fv, ff, local_report = fill_local(args.dotctl, tmp, "sphere", vertices,
+                                          faces, ["--stage", "fair"])
         report = pb.FillHolesResponse.FromString(fill[-1]).report
         fill_json = {
             "about": "tests/golden/fill_holes.stream: the FillHoles response "
                      "stream of this request (scripts/record_golden.py); "
-                     "expected: dotctl fill-holes --local on the same mesh",
+                     "fill_holes.requests: its upload; expected: dotctl "
+                     "fill-holes --local on the same mesh",
             "rpc": "dot.v1.Triangulator/FillHoles",
             "request": {"id": "golden-fill", "vertices": vertices.tolist(),
                         "faces": faces.tolist(),
-                        "options": {"stage": "fair"}},
+                        "options": {"stage": "fair", "answer": "mesh"},
+                        "upload_bytes": UPLOAD_BYTES},
             "stream": kinds(fill, pb.FillHolesResponse),
             "expected": {
                 "vertices": fv, "faces": ff,
                 "loops": report.loops, "filled": report.filled,
                 "added_vertices": report.added_vertices,
                 "added_faces": report.added_faces, "closed": report.closed}}
+        assert local_report["filled"] == report.filled
+
+        # FillHoles, the patches back.
+        pv, pf = bumpy_grid_with_hole()
+        patch_options = dot_client.FillOptions(
+            stage="fair", skip_longest=True, density=4).to_proto("patches")
+        patch_up, patched = record_fill(channel, "golden-patches",
+                                        patch_options, pv, pf)
+        wv, wf, whole_report = fill_local(
+            args.dotctl, tmp, "bumpy", pv, pf,
+            ["--stage", "fair", "--skip-longest", "--density", "4"])
+        expected_patches = patches_of_whole_mesh(wv, wf, whole_report, len(pv),
+                                                 len(pf))
+        report = pb.FillHolesResponse.FromString(patched[-1]).report
+        patches_json = {
+            "about": "tests/golden/fill_holes_patches.stream: the FillHoles "
+                     "response stream (answer FILL_ANSWER_PATCHES) of this "
+                     "request (scripts/record_golden.py); "
+                     "fill_holes_patches.requests: its upload; expected: the "
+                     "patches derived from dotctl fill-holes --local's whole "
+                     "mesh and report on the same mesh (whole_mesh)",
+            "rpc": "dot.v1.Triangulator/FillHoles",
+            "request": {"id": "golden-patches", "vertices": pv.tolist(),
+                        "faces": pf.tolist(),
+                        "options": {"stage": "fair", "skip_longest": True,
+                                    "density": 4.0, "answer": "patches"},
+                        "upload_bytes": UPLOAD_BYTES},
+            "stream": kinds(patched, pb.FillHolesResponse),
+            "expected": {
+                "patches": expected_patches,
+                "holes": [{"id": h["id"], "status": h["status"],
+                           "escalation": h["escalation"],
+                           "split_faces": h["split_faces"]}
+                          for h in whole_report["holes"]],
+                "loops": whole_report["loops"],
+                "filled": whole_report["filled"],
+                "skipped": whole_report["skipped"],
+                "added_vertices": whole_report["added_vertices"],
+                "added_faces": whole_report["added_faces"],
+                "closed": whole_report["closed"],
+                "whole_mesh": {"vertices": wv, "faces": wf}}}
 
         # The Python reassembly must agree before anything is written.
         got = wire.assemble_triangulate(
@@ -241,9 +377,28 @@ def main():
             [pb.FillHolesResponse.FromString(b) for b in fill])
         assert np.array_equal(got_fill.vertices, np.array(fv)), "fill vertices"
         assert np.array_equal(got_fill.faces, np.array(ff)), "fill faces"
+        got_patches = wire.assemble_patches(
+            [pb.FillHolesResponse.FromString(b) for b in patched])
+        want = as_patches(expected_patches)
+        assert len(got_patches.patches) == len(want), "patch count"
+        for got, exp in zip(got_patches.patches, want):
+            assert (got.hole, got.first_vertex) == (exp.hole, exp.first_vertex)
+            assert np.array_equal(got.vertices, exp.vertices), "patch vertices"
+            assert np.array_equal(got.faces, exp.faces), "patch faces"
+            assert got.replaced_faces.keys() == exp.replaced_faces.keys()
+            for k in exp.replaced_faces:
+                assert np.array_equal(got.replaced_faces[k],
+                                      exp.replaced_faces[k]), "replaced"
+        assert report.filled == whole_report["filled"]
+        assert sum(1 for k in kinds(patched, pb.FillHolesResponse)
+                   if k == "patch") >= 2, "the patch fits one message"
 
         for name, payloads, doc in (("triangulate", tri, tri_json),
-                                    ("fill_holes", fill, fill_json)):
+                                    ("fill_holes", fill, fill_json),
+                                    ("fill_holes_patches", patched,
+                                     patches_json)):
+            if name not in args.only:
+                continue
             with open(os.path.join(args.out, name + ".stream"), "wb") as f:
                 wire.write_length_prefixed(f, payloads)
             with open(os.path.join(args.out, name + ".json"), "w") as f:
@@ -251,6 +406,13 @@ def main():
                 f.write("\n")
             print(f"{name}: {len(payloads)} messages "
                   f"({', '.join(doc['stream'])})")
+        for name, payloads in (("fill_holes", fill_up),
+                               ("fill_holes_patches", patch_up)):
+            if name not in args.only:
+                continue
+            with open(os.path.join(args.out, name + ".requests"), "wb") as f:
+                wire.write_length_prefixed(f, payloads)
+            print(f"{name}.requests: {len(payloads)} messages")
     finally:
         server.terminate()
         server.wait(timeout=30)
