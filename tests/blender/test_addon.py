@@ -11,10 +11,12 @@ Installs the add-on from the zip the build made (into BLENDER_USER_SCRIPTS
 when set: ctest points it into the build tree), starts dot-server on a free
 127.0.0.1 port, builds meshes with holes, selected boundary loops and
 curves, runs each operator and checks the geometry with bmesh: closed where
-filled, edge-manifold, faces wound like their neighbours, no duplicate
-vertices, no intersecting faces. Any failure raises, so Blender exits 1.
+filled and open exactly where not asked, edge-manifold, faces wound like
+their neighbours, no duplicate vertices, no intersecting faces. Any
+failure raises, so Blender exits 1.
 """
 import argparse
+import dataclasses
 import math
 import os
 import socket
@@ -26,6 +28,7 @@ import traceback
 import addon_utils
 import bmesh
 import bpy
+from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 from mathutils.kdtree import KDTree
 
@@ -34,6 +37,11 @@ ap = argparse.ArgumentParser()
 ap.add_argument("--server", required=True)
 ap.add_argument("--addon-zip", required=True)
 ARGS = ap.parse_args(argv)
+
+# The Python client tests' meshes (numpy only).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                os.pardir, "python"))
+import shapes  # noqa: E402
 
 
 # -- harness -----------------------------------------------------------------
@@ -155,6 +163,42 @@ def select_boundary_edges(obj, where):
     bmesh.update_edit_mesh(obj.data)
 
 
+def boundary_midpoints(obj):
+    """The midpoints of the open border's edges, rounded: which holes are
+    open, comparable before and after a fill (the rims' vertices keep their
+    coordinates)."""
+    bm = object_bmesh(obj)
+    try:
+        return sorted(tuple(round(c, 9) for c in (e.verts[0].co + e.verts[1].co) / 2)
+                      for e in bm.edges if e.is_boundary)
+    finally:
+        bm.free()
+
+
+class Recording:
+    """Records the calls the add-on makes of one method of its client
+    (arguments and answer), to check what the server was asked."""
+
+    def __init__(self, method):
+        import dot
+        self.client = dot.connection.client(prefs())
+        self.method = method
+        self.calls = []
+
+    def __enter__(self):
+        real = getattr(self.client, self.method)
+
+        def record(*args, **kwargs):
+            answer = real(*args, **kwargs)
+            self.calls.append((args, kwargs, answer))
+            return answer
+        setattr(self.client, self.method, record)
+        return self
+
+    def __exit__(self, *exc):
+        delattr(self.client, self.method)  # the class's method again
+
+
 def expect_report(call, *words):
     """The operator must fail with a Blender report (RuntimeError from
     bpy.ops), never a Python traceback."""
@@ -190,7 +234,8 @@ def protected_polygon():
 # -- tests ---------------------------------------------------------------
 
 def test_operators_are_registered_with_one_undo_step():
-    for idname in ("dot_fill_loops", "dot_fill_holes", "dot_triangulate_curve"):
+    for idname in ("dot_fill_loops", "dot_triangulate_loops", "dot_fill_holes",
+                   "dot_triangulate_curve"):
         cls = getattr(bpy.types, "MESH_OT_" + idname)
         assert {'REGISTER', 'UNDO'} <= set(cls.bl_options), idname
         assert hasattr(bpy.ops.mesh, idname)
@@ -281,7 +326,7 @@ def test_fill_loops_presets_and_stages():
     assert v2 >= v1 and f2 > f1
 
 
-def test_fill_loops_follow_normals_and_custom_weights():
+def test_fill_loops_follow_normals_and_triangulate_custom_weights():
     clear_scene()
     bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
     sphere = bpy.context.active_object
@@ -291,14 +336,162 @@ def test_fill_loops_follow_normals_and_custom_weights():
     select_boundary_edges(sphere, lambda c: c.z > 0)
     assert bpy.ops.mesh.dot_fill_loops(preset='FOLLOW_NORMALS') == {'FINISHED'}
     select_boundary_edges(sphere, lambda c: c.z < 0)
-    assert bpy.ops.mesh.dot_fill_loops(
+    assert bpy.ops.mesh.dot_triangulate_loops(
         preset='CUSTOM', area=1, squared_dihedral=0.5, search_space='DELAUNAY') \
         == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
     check_mesh(sphere, boundary_edges=0)
 
 
-def test_fill_loops_protect_edges_splits_the_neighbours():
+def sphere_with_four_holes():
+    """A UV sphere with four holes: at the top, and around +x, -x and +y
+    on the equator."""
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16)
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.9)
+    delete_faces(sphere, lambda c: c.x > 0.85)
+    delete_faces(sphere, lambda c: c.x < -0.85)
+    delete_faces(sphere, lambda c: c.y > 0.85)
+    return sphere
+
+
+def test_fill_loops_fills_exactly_the_selected_loops():
+    """Two of four holes selected: at every stage exactly those two are
+    closed (FillHoles with loops_through, answered with patches), the
+    other two stay open as they were."""
+    chosen = lambda c: c.z > 0.8 or c.x > 0.8  # noqa: E731
+    for stage in ('TRIANGULATE', 'REFINE', 'FAIR'):
+        sphere = sphere_with_four_holes()
+        v0, f0, b0 = counts(sphere)
+        before = boundary_midpoints(sphere)
+        left = [m for m in before if not chosen(Vector(m))]
+        assert len(left) < len(before) and left, (len(left), len(before))
+        bpy.ops.object.mode_set(mode='EDIT')
+        select_boundary_edges(sphere, chosen)
+        with Recording("fill_patches") as fills:
+            assert bpy.ops.mesh.dot_fill_loops(stage=stage) == {'FINISHED'}
+        # The server was asked for the two loops alone, one vertex each,
+        # and filled just those.
+        ((args, _, answer),) = fills.calls
+        assert len(args[2].loops_through) == 2, args[2]
+        assert args[2].stage == stage.lower() and args[2].no_repair
+        assert (answer.report.loops, answer.report.filled,
+                answer.report.skipped) == (4, 2, 2), stage
+        assert len(answer.patches) == 2
+        bm = bmesh.from_edit_mesh(sphere.data)
+        selected = sum(1 for f in bm.faces if f.select)
+        bpy.ops.object.mode_set(mode='OBJECT')
+        v1, f1 = check_mesh(sphere, boundary_edges=len(left))
+        assert boundary_midpoints(sphere) == left, stage
+        assert selected == f1 - f0 > 0, (stage, selected, f1 - f0)
+        if stage == 'TRIANGULATE':
+            assert v1 == v0, "the triangulate stage adds no vertex"
+        else:
+            assert v1 > v0, stage
+
+
+def test_fill_loops_names_a_loop_by_a_vertex_of_its_own():
+    """Two holes touching at a corner: the corner is on both loops, so the
+    add-on names the selected loop by another of its vertices, and the
+    server fills that hole alone."""
+    clear_scene()
+    v, f = shapes.grid_with_holes(10, [(2, 4, 2, 4), (4, 6, 4, 6)])
+    grid = mesh_object("pinched", [tuple(p) for p in v],
+                       faces=[tuple(int(i) for i in t) for t in f])
+    in_a = lambda c: 1.9 < c.x < 4.1 and 1.9 < c.y < 4.1  # noqa: E731
+    left = [m for m in boundary_midpoints(grid) if not in_a(Vector(m))]
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(grid, in_a)
+    with Recording("fill_patches") as fills:
+        assert bpy.ops.mesh.dot_fill_loops(stage='REFINE') == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    ((args, _, answer),) = fills.calls
+    (named,) = args[2].loops_through
+    assert named != 4 * 10 + 4, "the shared corner names both loops"
+    assert answer.report.filled == 1
+    assert [h.pinched for h in answer.report.holes].count(True) == 2
+    assert boundary_midpoints(grid) == left
+    # The add-on keeps only patches of selected loops, whatever comes back.
+    import dot
+    from dot import geometry
+    hole = dot.connection.dot_client.HolePatch
+    import numpy as np
+    on_a = hole(0, 100, np.zeros((0, 3)), np.array([[22, 23, 32]], np.int32))
+    on_b = hole(1, 100, np.zeros((0, 3)), np.array([[44, 45, 54]], np.int32))
+    loop_a = [22, 23, 24, 34, 44, 43, 42, 32]
+    assert geometry.patches_of_loops([on_a, on_b], [loop_a], 100) == ([on_a], 1)
+
+
+def bumpy_grid(quads=False):
+    """tests/python/shapes.bumpy_grid_with_hole as a Blender mesh, in
+    triangles or in quads (two triangles per cell): its hole needs edge
+    protection, which splits a face beside it."""
+    v, f = shapes.bumpy_grid_with_hole()
+    faces = [tuple(int(i) for i in t) for t in f]
+    if quads:  # (a, a+1, a+n+1) and (a, a+n+1, a+n) make the cell's quad
+        half = len(faces) // 2
+        faces = [(a, b, c, faces[half + k][2])
+                 for k, (a, b, c) in enumerate(faces[:half])]
+    return mesh_object("bumpy", [tuple(p) for p in v], faces=faces)
+
+
+def test_fill_loops_rebuilds_the_faces_edge_protection_splits():
+    for quads in (False, True):
+        for stage in ('TRIANGULATE', 'FAIR'):
+            clear_scene()
+            grid = bumpy_grid(quads)
+            v0, f0, b0 = counts(grid)
+            assert (v0, b0) == (100, 36 + 16)
+            bpy.ops.object.mode_set(mode='EDIT')
+            select_boundary_edges(  # the hole, not the rim
+                grid, lambda c: 0.5 < c.x < 8.5 and 0.5 < c.y < 8.5)
+            assert bpy.ops.mesh.dot_fill_loops(stage=stage) == {'FINISHED'}
+            bpy.ops.object.mode_set(mode='OBJECT')
+            v1, f1 = check_mesh(grid, boundary_edges=36)  # the rim stays
+            what = f"quads={quads} {stage}"
+            if stage == 'TRIANGULATE':
+                # One vertex inserted on a boundary edge, shared by the patch
+                # and the face across, which was rebuilt around it.
+                assert v1 == 101, what
+            else:
+                assert v1 > 101, what
+            bm = object_bmesh(grid)
+            try:
+                bm.verts.ensure_lookup_table()
+                inserted = bm.verts[100]
+                assert len(inserted.link_faces) >= 3, what
+                assert not inserted.is_boundary, what
+            finally:
+                bm.free()
+
+
+def test_fill_loops_reports_what_it_cannot_fill():
+    clear_scene()
+    p = protected_polygon()
+    n = len(p)
+    # A fan from a far apex: every patch over its rim crosses the fan.
+    cone = mesh_object("cone", list(map(tuple, p)) + [(0.0, 0.0, 6.0)],
+                       faces=[(n, (i + 1) % n, i) for i in range(n)])
+    before = counts(cone)
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(cone, lambda c: True)
+    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(), "nothing was filled",
+                  "failed", "intersects")
+    bpy.ops.object.mode_set(mode='OBJECT')
+    assert counts(cone) == before
+    # Loose edges are no hole: Triangulate Loops is the operator for them.
+    wire = mesh_object("wire", list(map(tuple, p)),
+                       edges=[(i, (i + 1) % n) for i in range(n)])
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(),
+                  "use Triangulate Loops (DOT)")
+    bpy.ops.object.mode_set(mode='OBJECT')
+    assert counts(wire) == (n, 0, 0)
+
+
+def test_triangulate_loops_protect_edges_splits_the_neighbours():
     clear_scene()
     p = protected_polygon()
     n = len(p)
@@ -308,9 +501,9 @@ def test_fill_loops_protect_edges_splits_the_neighbours():
                        faces=[(n, (i + 1) % n, i) for i in range(n)])
     bpy.ops.object.mode_set(mode='EDIT')
     select_boundary_edges(cone, lambda c: True)
-    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(
+    expect_report(lambda: bpy.ops.mesh.dot_triangulate_loops(
         preset='MINIMAL_AREA', search_space='DELAUNAY'), "no triangulation")
-    assert bpy.ops.mesh.dot_fill_loops(
+    assert bpy.ops.mesh.dot_triangulate_loops(
         preset='MINIMAL_AREA', search_space='DELAUNAY', protect_edges=True) \
         == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
@@ -331,7 +524,7 @@ def test_fill_loops_protect_edges_splits_the_neighbours():
                        edges=[(i, (i + 1) % n) for i in range(n)])
     bpy.ops.object.mode_set(mode='EDIT')
     bpy.ops.mesh.select_all(action='SELECT')
-    assert bpy.ops.mesh.dot_fill_loops(
+    assert bpy.ops.mesh.dot_triangulate_loops(
         preset='SMOOTH', search_space='DELAUNAY', protect_edges=True) \
         == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
@@ -339,16 +532,17 @@ def test_fill_loops_protect_edges_splits_the_neighbours():
     assert (v, f) == (n + 4, n + 4 - 2)
 
 
-def test_fill_loops_needs_a_loop():
+def test_loop_operators_need_a_loop():
     clear_scene()
     bpy.ops.mesh.primitive_cylinder_add(vertices=12, end_fill_type='NOTHING')
     cyl = bpy.context.active_object
     bpy.ops.object.mode_set(mode='EDIT')
-    select_boundary_edges(cyl, lambda c: False)
-    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(), "select closed loops")
-    # Half a loop is no loop.
-    select_boundary_edges(cyl, lambda c: c.z > 0 and c.x > 0)
-    expect_report(lambda: bpy.ops.mesh.dot_fill_loops(), "select closed loops")
+    for op in (bpy.ops.mesh.dot_fill_loops, bpy.ops.mesh.dot_triangulate_loops):
+        select_boundary_edges(cyl, lambda c: False)
+        expect_report(op, "select closed loops")
+        # Half a loop is no loop.
+        select_boundary_edges(cyl, lambda c: c.z > 0 and c.x > 0)
+        expect_report(op, "select closed loops")
     bpy.ops.object.mode_set(mode='OBJECT')
 
 
@@ -491,8 +685,10 @@ def test_background_job_and_cancel(address):
         if n - 1 - 2 * k >= 2:
             twist.append(point(n - 1 - 2 * k))
         k += 1
+    smooth = dot.connection.dot_client.TriangulateOptions(
+        weights={"squared_dihedral": 1.0})
     job = operators.Job(operators._triangulate_work(
-        [saddle(50), saddle(60)], None, {"squared_dihedral": 1.0}))
+        [saddle(50), saddle(60)], None, smooth))
     job.start(client)
     for _ in range(600):
         if job.done:
@@ -502,7 +698,7 @@ def test_background_job_and_cancel(address):
     assert [r.ok for r in job.result] == [True, True]
     assert job.fraction == 1.0
     slow = operators.Job(operators._triangulate_work(
-        [twist], None, {"squared_dihedral": 1.0, "no_cache": True}))
+        [twist], None, dataclasses.replace(smooth, no_cache=True)))
     slow.start(client)
     time.sleep(0.2)
     slow.token.cancel()  # what Esc does

@@ -3,7 +3,10 @@
 filling, computed by a dot-server (gRPC) through the dot_client package.
 
 Operators (F3 search, or the menus below):
-  mesh.dot_fill_loops        Edit Mode > Face: fill selected boundary loops
+  mesh.dot_fill_loops        Edit Mode > Face: fill exactly the holes whose
+                             rims are selected (FillHoles)
+  mesh.dot_triangulate_loops Edit Mode > Face: a DOT patch per selected
+                             loop, loose edges too (Triangulate)
   mesh.dot_fill_holes        Object/Edit Mode: fill every hole (FillHoles)
   mesh.dot_triangulate_curve Object Mode: a closed curve -> a surface
 """
@@ -13,8 +16,9 @@ bl_info = {
     "author": "The dot authors",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Edit Mode > Face > Fill Loops (DOT); Object > Fill Holes "
-                "(DOT); Object > Convert > Triangulate Curve (DOT)",
+    "location": "Edit Mode > Face > Fill Loops (DOT), Triangulate Loops "
+                "(DOT); Object > Fill Holes (DOT); Object > Convert > "
+                "Triangulate Curve (DOT)",
     "description": "Delaunay-restricted optimal triangulation (DOT) of hole "
                    "boundaries and curves, and hole filling, by a dot-server",
     "category": "Mesh",
@@ -33,6 +37,7 @@ from . import connection, geometry, operators, preferences  # noqa: E402,F401
 def _menu_edit_faces(self, context):
     self.layout.separator()
     self.layout.operator(operators.MESH_OT_dot_fill_loops.bl_idname)
+    self.layout.operator(operators.MESH_OT_dot_triangulate_loops.bl_idname)
     self.layout.operator(operators.MESH_OT_dot_fill_holes.bl_idname)
 
 

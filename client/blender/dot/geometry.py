@@ -2,7 +2,10 @@
 """bmesh in, numpy out, and DOT results back into the bmesh: loops of
 selected boundary edges, the mesh as triangles for FillHoles, patches
 joined to their boundary (edges split where DOT inserted vertices, no
-duplicate vertices, faces wound like their neighbours)."""
+duplicate vertices, faces wound like their neighbours). FillHoles answers
+with patches (dot_client.FillPatches) in the ids of the triangles sent, so
+a patch is added as it is: its new vertices, its faces, and the faces
+whose triangles edge protection split, rebuilt."""
 from collections import defaultdict
 
 import bmesh
@@ -140,22 +143,6 @@ def add_patch(bm, loop, vertices, triangles, summary, stats):
     return faces
 
 
-class _Union:
-    def __init__(self):
-        self.parent = {}
-
-    def find(self, x):
-        root = x
-        while self.parent.setdefault(root, root) != root:
-            root = self.parent[root]
-        while self.parent[x] != root:  # path compression
-            self.parent[x], x = root, self.parent[x]
-        return root
-
-    def join(self, a, b):
-        self.parent[self.find(a)] = self.find(b)
-
-
 def merge_coincident(bm):
     """Merges vertices at exactly the same position into the first one, as
     dotctl's repair does; returns how many were merged. (remove_doubles
@@ -173,92 +160,103 @@ def merge_coincident(bm):
     return len(targets)
 
 
-def add_fill(bm, result, vertex_count, owner, keep_vertices=None):
-    """Merges a FillHoles result made with no_repair from `triangles(bm)`
-    into bm: the output's first vertices are bm's, its first len(owner)
-    faces bm's triangles (those split by edge protection replaced by their
-    first piece), then the pieces and patches. Faces split in place are
-    rebuilt from their triangles. With `keep_vertices`, only the patches
-    touching those vertex indices are added (the holes asked for).
-    Returns (new faces, number of patches added)."""
-    faces = result.faces
-    first_new = len(owner)
-    split = sorted({int(t) for h in result.report.holes
-                    if h.status == "filled" for t in h.split_faces})
-    # Patches: appended faces and split faces, joined across edges the input
-    # did not have (chords, halves of split edges) and per Blender face.
-    input_edges = {tuple(sorted((e.verts[0].index, e.verts[1].index)))
-                   for e in bm.edges}
-    union = _Union()
-    by_edge = {}
-    members = list(range(first_new, len(faces))) + split
-    for f in members:
-        union.find(f)
-        t = faces[f]
-        for i in range(3):
-            e = tuple(sorted((int(t[i]), int(t[(i + 1) % 3]))))
-            if e in input_edges:
-                continue
-            if e in by_edge:
-                union.join(f, by_edge[e])
-            else:
-                by_edge[e] = f
-    first_split_of = {}
-    for t in split:
-        p = int(owner[t])
-        if p in first_split_of:
-            union.join(t, first_split_of[p])
+def loop_names(bm, loops):
+    """One vertex of each loop to name it in FillOptions.loops_through: one
+    with exactly two border edges where the loop has one, so that no other
+    border loop passes through it (a vertex where two loops touch would
+    name both)."""
+    bm.verts.ensure_lookup_table()
+    names = []
+    for loop in loops:
+        names.append(next(
+            (i for i in loop
+             if sum(1 for e in bm.verts[i].link_edges if e.is_boundary) == 2),
+            loop[0]))
+    return names
+
+
+def patches_of_loops(patches, loops, vertex_count):
+    """The patches that fill one of `loops` (every mesh vertex of their
+    faces is on that loop), and the number of the others (a loop through a
+    vertex that a selected loop touches)."""
+    rims = [set(loop) for loop in loops]
+    kept, others = [], 0
+    for p in patches:
+        on = {int(i) for i in p.faces.ravel() if i < vertex_count}
+        if any(on <= rim for rim in rims):
+            kept.append(p)
         else:
-            first_split_of[p] = t
-    groups = defaultdict(list)
-    for f in members:
-        groups[union.find(f)].append(f)
-    kept = []
-    for group in groups.values():
-        if keep_vertices is None or any(
-                int(v) in keep_vertices for f in group for v in faces[f]
-                if v < vertex_count):
-            kept.append(group)
-    keep = {f for g in kept for f in g}
-    rebuild = sorted({int(owner[t]) for t in split if t in keep})
-    # The faces to make: every triangle of a rebuilt face, the kept
-    # appended faces.
-    triangles_of = defaultdict(list)
-    for t, p in enumerate(owner):
-        if int(p) in first_split_of:
-            triangles_of[int(p)].append(t)
-    make = [(faces[t], p) for p in rebuild for t in triangles_of[p]]
-    make += [(faces[f], None) for f in range(first_new, len(faces)) if f in keep]
+            others += 1
+    return kept, others
+
+
+def add_patches(bm, patches, vertex_count, faces, owner):
+    """Adds the patches of a FillHoles answer (dot_client.HolePatch) to bm.
+
+    The answer is in the ids of what was sent, `faces, owner =
+    triangles(bm)` with no_repair: vertex ids below `vertex_count` are
+    bm's vertices, the others the patches' new vertices (numbered on from
+    `vertex_count`, patch after patch; patches left out keep their ids
+    unused), and a replaced face is a triangle of `faces`. Each bm face
+    with a replaced triangle is rebuilt from its loop triangles, the
+    replaced ones swapped for their replacements (the edges it no longer
+    uses go with it). Returns (new faces, stats)."""
+    # Checked before bm changes: a patch that does not fit is refused whole.
+    new_ids = {p.first_vertex + k for p in patches
+               for k in range(len(p.vertices))}
+    replaced = {}
+    for p in patches:
+        for t, pieces in p.replaced_faces.items():
+            if not 0 <= t < len(owner):
+                raise ValueError(f"a patch replaces triangle {t}, but "
+                                 f"{len(owner)} were sent")
+            replaced[t] = pieces
+        for tri in [p.faces] + list(p.replaced_faces.values()):
+            for i in tri.ravel():
+                if not (0 <= i < vertex_count or int(i) in new_ids):
+                    raise ValueError(f"a patch refers to vertex {int(i)}, "
+                                     "which is neither the mesh's nor new")
     bm.verts.ensure_lookup_table()
     bm.faces.ensure_lookup_table()
-    existing = list(bm.verts)  # lookups go stale once faces are added
-    old_faces = {p: bm.faces[p] for p in rebuild}
-    verts = {}
+    existing = list(bm.verts)  # lookups go stale once vertices are added
+    new_verts = {}
+    for p in patches:
+        for k, co in enumerate(p.vertices):
+            new_verts[p.first_vertex + k] = bm.verts.new(co)
 
     def vert(i):
         i = int(i)
-        if i not in verts:
-            verts[i] = (existing[i] if i < vertex_count
-                        else bm.verts.new(result.vertices[i]))
-        return verts[i]
+        return existing[i] if i < vertex_count else new_verts[i]
 
-    old = list(old_faces.values())
-    old_edges = {e for f in old for e in f.edges}
+    rebuilt = {int(owner[t]) for t in replaced}
+    make = []  # (vertex ids, the face to copy attributes from)
+    old_faces = {f: bm.faces[f] for f in rebuilt}
+    for t, f in enumerate(owner):
+        f = int(f)
+        if f in rebuilt:
+            for tri in replaced.get(t, faces[t:t + 1]):
+                make.append((tri, old_faces[f]))
+    for p in patches:
+        for tri in p.faces:
+            make.append((tri, None))
     stats = {}
     new_faces = []
-    for t, p in make:
-        vs = [vert(i) for i in t]
-        example = old_faces[p] if p is not None else _example_face(
-            [v for v, i in zip(vs, t) if i < vertex_count])
+    for tri, example in make:
+        vs = [vert(i) for i in tri]
+        if example is None:
+            example = _example_face([v for v, i in zip(vs, tri)
+                                     if i < vertex_count])
         f = _new_face(bm, vs, example, stats)
         if f is not None:
             new_faces.append(f)
+    old = list(old_faces.values())
     if old:
+        old_edges = {e for f in old for e in f.edges}
         bmesh.ops.delete(bm, geom=old, context='FACES_ONLY')
         loose = [e for e in old_edges if e.is_valid and not e.link_faces]
-        if loose:
+        if loose:  # a split boundary edge, now two halves
             bmesh.ops.delete(bm, geom=loose, context='EDGES')
-    return new_faces, len(kept)
+    return new_faces, stats
 
 
 def closed_loops_of_edges(bm):

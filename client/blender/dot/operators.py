@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
-"""The add-on's operators: mesh.dot_fill_loops, mesh.dot_fill_holes,
+"""The add-on's operators, one per job: mesh.dot_fill_loops (FillHoles,
+exactly the selected loops), mesh.dot_triangulate_loops (Triangulate, one
+DOT patch per selected loop), mesh.dot_fill_holes (FillHoles, every hole),
 mesh.dot_triangulate_curve.
 
 Each operator reads the geometry in `prepare` (main thread), does the
@@ -9,6 +11,7 @@ cancels, or inline from scripts and the redo panel), and writes the result
 back in `finish` (main thread), as one undo step. Every failure becomes a
 Blender report.
 """
+import dataclasses
 import sys
 import threading
 import traceback
@@ -21,8 +24,7 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
 from . import connection, geometry
 from .connection import dot_client
 
-METRICS = ("area", "perimeter", "normal_deviation", "shape", "dihedral",
-           "squared_dihedral")
+METRICS = tuple(f.name for f in dataclasses.fields(dot_client.Weights))
 
 STAGES = [
     ('TRIANGULATE', "Triangulate", "The optimal DOT patch only"),
@@ -61,6 +63,15 @@ def _weight(name, default=0.0):
         "metric (a negative weight maximizes it)")
 
 
+def preset_items(leave_out=()):
+    """The weight presets as enum items: dot_client.WEIGHT_PRESETS (the one
+    table the client and the add-on share), then Custom."""
+    return [(name.upper(), p.label, p.description)
+            for name, p in dot_client.WEIGHT_PRESETS.items()
+            if name not in leave_out] + [
+        ('CUSTOM', "Custom", "The weights below")]
+
+
 class WeightProps:
     area: _weight("area", 1.0)
     perimeter: _weight("perimeter")
@@ -69,31 +80,20 @@ class WeightProps:
     dihedral: _weight("dihedral")
     squared_dihedral: _weight("squared_dihedral")
 
-    def custom_weights(self):
-        return {m: getattr(self, m) for m in METRICS}
+    def weights(self, use):
+        """The weights of the `preset` property: the custom ones, or the
+        preset's for `use` ("triangulate": one loop's patch, "fill":
+        FillHoles)."""
+        if self.preset == 'CUSTOM':
+            return dot_client.Weights(**{m: getattr(self, m) for m in METRICS})
+        preset = dot_client.WEIGHT_PRESETS[self.preset.lower()]
+        return preset.triangulate if use == "triangulate" else preset.fill
 
     def draw_weights(self, layout, enabled):
         col = layout.column(align=True)
         col.enabled = enabled
         for m in METRICS:
             col.prop(self, m)
-
-
-# Patch weights of Triangulate per preset; shape is a scale-free tie-break
-# where the main metric has ties (flat loops).
-TRIANGULATE_PRESETS = {
-    'MINIMAL_AREA': {"area": 1.0},
-    'SMOOTH': {"squared_dihedral": 1.0, "shape": 0.01},
-    'FOLLOW_NORMALS': {"normal_deviation": 1.0, "shape": 0.01},
-}
-# FillHoles weights per preset (None: the server's hole-filling default,
-# squared dihedral 1 and area 0.01 per hole scale).
-FILL_PRESETS = {
-    'DEFAULT': None,
-    'MINIMAL_AREA': {"area": 1.0},
-    'SMOOTH': None,
-    'FOLLOW_NORMALS': {"normal_deviation": 1.0, "area": 0.01},
-}
 
 
 # -- the job ---------------------------------------------------------------
@@ -219,25 +219,36 @@ class DotOperator:
             return self.fail(e)
 
 
-def _triangulate_work(loops, normals, kwargs):
+def _triangulate_work(loops, normals, options):
+    """Triangulate each loop ((n, 3) arrays) with `options`
+    (dot_client.TriangulateOptions) over one TriangulateBatch stream."""
     def work(client, cancel, progress):
         progress(0.0, f"0 of {len(loops)} loops")
         return client.triangulate_many(
-            loops, normals, cancel=cancel,
+            loops, normals, options=options, cancel=cancel,
             progress=lambda done, total, _: progress(
-                done / total, f"{done} of {total} loops"), **kwargs)
+                done / total, f"{done} of {total} loops"))
     return work
 
 
-def _fill_work(vertices, faces, kwargs):
+def _fill_work(vertices, faces, options):
+    """FillHoles on the mesh as triangles, answered with patches
+    (dot_client.FillPatches) in the ids sent."""
     def work(client, cancel, progress):
         progress(0.0, "sending the mesh")
-        return client.fill_holes(
-            vertices, faces, cancel=cancel, no_repair=True,
+        return client.fill_patches(
+            vertices, faces, options, cancel=cancel,
             progress=lambda p: progress(
                 p.holes_done / max(1, p.holes_total),
-                f"{p.holes_done} of {p.holes_total} holes"), **kwargs)
+                f"{p.holes_done} of {p.holes_total} holes"))
     return work
+
+
+def _hole_problems(report):
+    """A line per hole that was selected but stays open."""
+    return [f"hole {h.id} ({h.boundary_vertices} edges): {h.status}"
+            + (f": {h.reason}" if h.reason else "")
+            for h in report.holes if h.status not in ("filled", "skipped")]
 
 
 def _edit_bmesh(context):
@@ -245,54 +256,23 @@ def _edit_bmesh(context):
     return obj, bmesh.from_edit_mesh(obj.data)
 
 
-# -- mesh.dot_fill_loops ----------------------------------------------------
+# -- the selected loops ----------------------------------------------------
 
 
-class MESH_OT_dot_fill_loops(DotOperator, WeightProps, bpy.types.Operator):
-    """Fill each closed loop of selected boundary edges with its optimal
-    DOT patch (Delaunay-restricted optimal triangulation)"""
-    bl_idname = "mesh.dot_fill_loops"
-    bl_label = "Fill Loops (DOT)"
-    bl_options = {'REGISTER', 'UNDO'}
-
-    preset: EnumProperty(
-        name="Preset", default='SMOOTH', items=[
-            ('MINIMAL_AREA', "Minimal Area", "The patch of least area"),
-            ('SMOOTH', "Smooth", "Least squared dihedral angles between "
-             "the patch's triangles (fair patches)"),
-            ('FOLLOW_NORMALS', "Follow Surrounding Normals", "Triangles "
-             "facing like the surface's vertex normals around the loop"),
-            ('CUSTOM', "Custom", "The weights below"),
-        ])
-    stage: EnumProperty(name="Stage", items=STAGES, default='TRIANGULATE')
-    protect_edges: BoolProperty(
-        name="Protect Edges", default=False,
-        description="Split boundary edges that are not Delaunay so more loops "
-        "can be filled (the faces beside them get the new vertices)")
-    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
-                               default='AUTO')
+class LoopsOperator(DotOperator, WeightProps):
+    """Shared by Fill Loops and Triangulate Loops: Edit Mode, the selected
+    loops gathered (with reports when there are none), the new faces
+    selected alone, what was filled reported."""
 
     @classmethod
     def poll(cls, context):
         return (context.mode == 'EDIT_MESH' and context.edit_object is not None
                 and context.edit_object.type == 'MESH')
 
-    def draw(self, context):
-        layout = self.layout
-        layout.prop(self, "preset")
-        self.draw_weights(layout, self.preset == 'CUSTOM')
-        layout.prop(self, "stage")
-        col = layout.column()
-        col.enabled = self.stage == 'TRIANGULATE'
-        col.prop(self, "protect_edges")
-        col.prop(self, "search_space")
-
-    def _weights(self):
-        if self.preset == 'CUSTOM':
-            return self.custom_weights()
-        return dict(TRIANGULATE_PRESETS[self.preset])
-
-    def prepare(self, context):
+    def selected_loops(self, context):
+        """(object, bmesh, loops): the closed loops of selected boundary or
+        wire edges (vertex index lists), or None when there are none (then
+        reported)."""
         obj, bm = _edit_bmesh(context)
         bm.verts.index_update()
         loops, skipped = geometry.selected_loops(bm)
@@ -303,84 +283,23 @@ class MESH_OT_dot_fill_loops(DotOperator, WeightProps, bpy.types.Operator):
             self.report({'ERROR'}, "DOT: select closed loops of boundary "
                         "edges (the rims of holes) to fill")
             return None
-        vertices = geometry.vertex_array(bm)
-        state = {"object": obj.name, "loops": loops,
-                 "counts": (len(bm.verts), len(bm.faces))}
-        if self.stage == 'TRIANGULATE':
-            normals = None
-            weights = self._weights()
-            if weights.get("normal_deviation"):
-                bm.normal_update()
-                bm.verts.ensure_lookup_table()
-                normals = [np.array([bm.verts[i].normal[:] for i in loop])
-                           for loop in loops]
-            kwargs = dict(weights, protect_edges=self.protect_edges,
-                          search_space=self.search_space.lower())
-            polygons = [vertices[loop] for loop in loops]
-            return _triangulate_work(polygons, normals, kwargs), state
-        wire = sum(1 for loop in loops if all(
-            not e.link_faces for e in _loop_edges(bm, loop)))
-        if wire:
-            self.report({'ERROR'}, "DOT: Refine and Fair need the loops to be "
-                        "rims of holes in a surface; use Triangulate for loops "
-                        "of loose edges")
-            return None
-        faces, owner = geometry.triangles(bm)
-        state["owner"] = owner
-        weights = (self.custom_weights() if self.preset == 'CUSTOM'
-                   else FILL_PRESETS[self.preset])
-        kwargs = dict(weights or {}, stage=self.stage.lower(),
-                      max_hole_edges=max(len(loop) for loop in loops))
-        return _fill_work(vertices, faces, kwargs), state
+        return obj, bm, loops
 
-    def finish(self, context, state, payload):
-        obj, bm = _edit_bmesh(context)
-        geometry.check_unchanged(bm, *state["counts"])
-        stats, filled, problems = {}, 0, []
-        if isinstance(payload, list) and all(r.error for r in payload):
-            problems = [f"loop {k + 1}: {describe(r.error)}"
-                        for k, r in enumerate(payload)]
-            return _report(self, 0, len(payload), problems, stats)
-        if not isinstance(payload, list) and payload.report.filled == 0:
-            problems = [f"hole {h.id}: {h.status} {h.reason}".strip()
-                        for h in payload.report.holes
-                        if h.status not in ("filled", "skipped")]
-            return _report(self, 0, len(state["loops"]), problems, stats)
+    @staticmethod
+    def select_only_new(bm):
         for f in bm.faces:  # the new faces end up selected, alone
             f.select_set(False)
-        if isinstance(payload, list):  # Triangulate results, one per loop
-            for k, (loop, result) in enumerate(zip(state["loops"], payload)):
-                if result.error is not None:
-                    problems.append(f"loop {k + 1}: {describe(result.error)}")
-                    continue
-                geometry.add_patch(bm, loop, result.vertices,
-                                   result.triangles, result.summary, stats)
-                filled += 1
-        else:
-            keep = {v for loop in state["loops"] for v in loop}
-            _, filled = geometry.add_fill(bm, payload, state["counts"][0],
-                                          state["owner"], keep)
-            asked = len(state["loops"])
-            if filled < asked:
-                problems.append(
-                    f"{asked - filled} of {asked} loops not filled: " + "; ".join(
-                        f"hole {h.id}: {h.status} {h.reason}".strip()
-                        for h in payload.report.holes
-                        if h.status not in ("filled", "skipped")))
+
+    @staticmethod
+    def update(obj, bm):
         bm.select_flush_mode()
         bm.normal_update()
         bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=True)
-        return _report(self, filled, len(state["loops"]), problems, stats)
 
 
-def _loop_edges(bm, loop):
-    bm.verts.ensure_lookup_table()
-    n = len(loop)
-    return [bm.edges.get((bm.verts[loop[i]], bm.verts[loop[(i + 1) % n]]))
-            for i in range(n)]
-
-
-def _report(op, filled, total, problems, stats):
+def report_filled(op, filled, total, problems, stats):
+    """Reports problems (warnings) and what was filled; CANCELLED when
+    nothing was."""
     for p in problems:
         op.report({'WARNING'}, p)
     if filled == 0:
@@ -394,6 +313,142 @@ def _report(op, filled, total, problems, stats):
         extra += f", {stats['duplicates']} faces existed already"
     op.report({'INFO'}, f"DOT: {filled} of {total} filled{extra}")
     return {'FINISHED'}
+
+
+def _loop_edges(bm, loop):
+    bm.verts.ensure_lookup_table()
+    n = len(loop)
+    return [bm.edges.get((bm.verts[loop[i]], bm.verts[loop[(i + 1) % n]]))
+            for i in range(n)]
+
+
+# -- mesh.dot_fill_loops ----------------------------------------------------
+
+
+class MESH_OT_dot_fill_loops(LoopsOperator, bpy.types.Operator):
+    """Fill exactly the holes whose rims are selected (closed loops of
+    boundary edges) through the DOT server's FillHoles: the optimal patch,
+    meeting the surface around it, refined and faired if asked"""
+    bl_idname = "mesh.dot_fill_loops"
+    bl_label = "Fill Loops (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    preset: EnumProperty(name="Weights", default='SMOOTH',
+                         items=preset_items())
+    stage: EnumProperty(name="Stage", items=STAGES, default='TRIANGULATE')
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "stage")
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+
+    def prepare(self, context):
+        selected = self.selected_loops(context)
+        if selected is None:
+            return None
+        obj, bm, loops = selected
+        if any(e is None or not e.is_boundary
+               for loop in loops for e in _loop_edges(bm, loop)):
+            self.report({'ERROR'}, "DOT: Fill Loops fills the rims of holes "
+                        "in a surface (boundary edges); for loops of loose "
+                        "edges use Triangulate Loops (DOT)")
+            return None
+        vertices = geometry.vertex_array(bm)
+        faces, owner = geometry.triangles(bm)
+        options = dot_client.FillOptions(
+            stage=self.stage.lower(), weights=self.weights("fill"),
+            loops_through=geometry.loop_names(bm, loops), no_repair=True)
+        state = {"loops": loops, "faces": faces, "owner": owner,
+                 "counts": (len(bm.verts), len(bm.faces))}
+        return _fill_work(vertices, faces, options), state
+
+    def finish(self, context, state, answer):
+        obj, bm = _edit_bmesh(context)
+        geometry.check_unchanged(bm, *state["counts"])
+        vertex_count = state["counts"][0]
+        patches, others = geometry.patches_of_loops(
+            answer.patches, state["loops"], vertex_count)
+        problems = [f"DOT: {p}" for p in _hole_problems(answer.report)]
+        if others:
+            problems.append(f"DOT: {others} other holes through vertices of "
+                            "the selected loops were left open")
+        if not patches:
+            return report_filled(self, 0, len(state["loops"]), problems, {})
+        self.select_only_new(bm)
+        _, stats = geometry.add_patches(bm, patches, vertex_count,
+                                        state["faces"], state["owner"])
+        holes = {p.hole for p in patches}
+        stats["inserted"] = sum(h.boundary_inserted
+                                for h in answer.report.holes if h.id in holes)
+        self.update(obj, bm)
+        return report_filled(self, len(patches), len(state["loops"]),
+                             problems, stats)
+
+
+# -- mesh.dot_triangulate_loops ---------------------------------------------
+
+
+class MESH_OT_dot_triangulate_loops(LoopsOperator, bpy.types.Operator):
+    """Fill each selected closed loop (boundary or loose edges) with its
+    optimal DOT patch (Delaunay-restricted optimal triangulation of the
+    loop alone)"""
+    bl_idname = "mesh.dot_triangulate_loops"
+    bl_label = "Triangulate Loops (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    preset: EnumProperty(name="Preset", default='SMOOTH',
+                         items=preset_items())
+    protect_edges: BoolProperty(
+        name="Protect Edges", default=False,
+        description="Split boundary edges that are not Delaunay so more loops "
+        "can be filled (the faces beside them get the new vertices)")
+    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
+                               default='AUTO')
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+        layout.prop(self, "protect_edges")
+        layout.prop(self, "search_space")
+
+    def prepare(self, context):
+        selected = self.selected_loops(context)
+        if selected is None:
+            return None
+        obj, bm, loops = selected
+        vertices = geometry.vertex_array(bm)
+        weights = self.weights("triangulate")
+        normals = None
+        if weights.normal_deviation:
+            bm.normal_update()
+            bm.verts.ensure_lookup_table()
+            normals = [np.array([bm.verts[i].normal[:] for i in loop])
+                       for loop in loops]
+        options = dot_client.TriangulateOptions(
+            weights=weights, protect_edges=self.protect_edges,
+            search_space=self.search_space.lower())
+        state = {"loops": loops, "counts": (len(bm.verts), len(bm.faces))}
+        return _triangulate_work([vertices[loop] for loop in loops], normals,
+                                 options), state
+
+    def finish(self, context, state, results):
+        obj, bm = _edit_bmesh(context)
+        geometry.check_unchanged(bm, *state["counts"])
+        problems = [f"loop {k + 1}: {describe(r.error)}"
+                    for k, r in enumerate(results) if r.error is not None]
+        if len(problems) == len(results):
+            return report_filled(self, 0, len(results), problems, {})
+        self.select_only_new(bm)
+        stats, filled = {}, 0
+        for loop, result in zip(state["loops"], results):
+            if result.error is None:
+                geometry.add_patch(bm, loop, result.vertices,
+                                   result.triangles, result.summary, stats)
+                filled += 1
+        self.update(obj, bm)
+        return report_filled(self, filled, len(results), problems, stats)
 
 
 # -- mesh.dot_fill_holes ----------------------------------------------------
@@ -423,14 +478,9 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
         "dotctl's repair does: a mesh imported with split vertices (OBJ, "
         "STL) otherwise has holes that repeat a vertex and cannot be filled")
     preset: EnumProperty(
-        name="Weights", default='DEFAULT', items=[
-            ('DEFAULT', "Default", "Squared dihedral angles with a little "
-             "area, including the faces around the hole"),
-            ('MINIMAL_AREA', "Minimal Area", "The patch of least area"),
-            ('FOLLOW_NORMALS', "Follow Surrounding Normals",
-             "Triangles facing like the surface around the hole"),
-            ('CUSTOM', "Custom", "The weights below (per hole scale)"),
-        ])
+        name="Weights", default='SMOOTH', items=preset_items(),
+        description="The patches' metric weights (Smooth is the service's "
+        "default; area and perimeter are per hole scale)")
 
     @classmethod
     def poll(cls, context):
@@ -472,18 +522,18 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
                 return None
             vertices = geometry.vertex_array(bm)
             faces, owner = geometry.triangles(bm)
-            state = {"owner": owner, "counts": (len(bm.verts), len(bm.faces)),
+            state = {"faces": faces, "owner": owner,
+                     "counts": (len(bm.verts), len(bm.faces)),
                      "merged": merged}
         finally:
             if not edit:
                 bm.free()
-        weights = (self.custom_weights() if self.preset == 'CUSTOM'
-                   else FILL_PRESETS[self.preset])
-        kwargs = dict(weights or {}, stage=self.stage.lower(),
-                      max_hole_edges=self.max_hole_edges,
-                      max_hole_diameter=self.max_hole_diameter,
-                      skip_longest=self.skip_longest)
-        return _fill_work(vertices, faces, kwargs), state
+        options = dot_client.FillOptions(
+            stage=self.stage.lower(), weights=self.weights("fill"),
+            max_hole_edges=self.max_hole_edges,
+            max_hole_diameter=self.max_hole_diameter,
+            skip_longest=self.skip_longest, no_repair=True)
+        return _fill_work(vertices, faces, options), state
 
     def finish(self, context, state, result):
         obj, bm, edit = self._bmesh(context)
@@ -492,8 +542,8 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
             if edit:
                 for f in bm.faces:
                     f.select_set(False)
-            _, patches = geometry.add_fill(bm, result, state["counts"][0],
-                                           state["owner"])
+            geometry.add_patches(bm, result.patches, state["counts"][0],
+                                 state["faces"], state["owner"])
             bm.normal_update()
             if edit:
                 bm.select_flush_mode()
@@ -506,10 +556,7 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
             if not edit:
                 bm.free()
         r = result.report
-        problems = [f"hole {h.id} ({h.boundary_vertices} edges): {h.status}"
-                    + (f": {h.reason}" if h.reason else "")
-                    for h in r.holes if h.status not in ("filled", "skipped")]
-        for p in problems:
+        for p in _hole_problems(r):
             self.report({'WARNING'}, f"DOT: {p}")
         merged = state.get("merged", 0)
         self.report({'INFO'}, f"DOT: {r.filled} of {r.loops} holes filled"
@@ -587,12 +634,8 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
     bl_options = {'REGISTER', 'UNDO'}
 
     preset: EnumProperty(
-        name="Preset", default='SMOOTH', items=[
-            ('MINIMAL_AREA', "Minimal Area", "The surface of least area"),
-            ('SMOOTH', "Smooth", "Least squared dihedral angles (a fair "
-             "surface)"),
-            ('CUSTOM', "Custom", "The weights below"),
-        ])
+        name="Preset", default='SMOOTH',
+        items=preset_items(leave_out=("follow_normals",)))  # no normals
     protect_edges: BoolProperty(
         name="Protect Edges", default=False,
         description="Split curve segments that are not Delaunay so more "
@@ -627,15 +670,15 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
             self.report({'ERROR'}, f"DOT: {obj.name} has no closed curve "
                         "(make it cyclic: Curve > Toggle Cyclic)")
             return None
-        weights = (self.custom_weights() if self.preset == 'CUSTOM'
-                   else dict(TRIANGULATE_PRESETS[self.preset]))
-        if weights.get("normal_deviation"):
+        weights = self.weights("triangulate")
+        if weights.normal_deviation:
             self.report({'ERROR'}, "DOT: curves have no normals: set the "
                         "normal deviation weight to 0")
             return None
-        kwargs = dict(weights, protect_edges=self.protect_edges,
-                      search_space=self.search_space.lower())
-        return _triangulate_work(loops, None, kwargs), {"object": obj.name}
+        options = dot_client.TriangulateOptions(
+            weights=weights, protect_edges=self.protect_edges,
+            search_space=self.search_space.lower())
+        return _triangulate_work(loops, None, options), {"object": obj.name}
 
     def finish(self, context, state, results):
         source = bpy.data.objects[state["object"]]
@@ -660,7 +703,7 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
                         pass  # the same face from two loops
                 filled += 1
             if filled == 0:
-                return _report(self, 0, len(results), problems, {})
+                return report_filled(self, 0, len(results), problems, {})
             bm.normal_update()
             mesh = bpy.data.meshes.new(f"{source.name} DOT surface")
             bm.to_mesh(mesh)
@@ -675,8 +718,8 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
             o.select_set(False)
         obj.select_set(True)
         context.view_layer.objects.active = obj
-        return _report(self, filled, len(results), problems, {})
+        return report_filled(self, filled, len(results), problems, {})
 
 
-classes = (MESH_OT_dot_fill_loops, MESH_OT_dot_fill_holes,
-           MESH_OT_dot_triangulate_curve)
+classes = (MESH_OT_dot_fill_loops, MESH_OT_dot_triangulate_loops,
+           MESH_OT_dot_fill_holes, MESH_OT_dot_triangulate_curve)
