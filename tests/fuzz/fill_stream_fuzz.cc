@@ -14,7 +14,8 @@
 // status with a message and never gRPC OK; an OK fill has only finite
 // vertices, keeps the repaired input's vertices first and unchanged, has
 // faces over existing, distinct vertices, counts that add up, and a mesh
-// reported closed has every edge on exactly two faces.
+// reported closed has every edge on exactly two faces; its patches in the
+// ids as sent (PatchesAsSent, the patches answer) agree with the mesh.
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -85,6 +86,41 @@ void CheckFill(const dot::MeshData& input, const dot::FillResult& r) {
   if (m.triangles.empty()) Fail("OK with an empty mesh");
 }
 
+// The patches answer (FILL_ANSWER_PATCHES) of an OK fill: one per filled
+// hole, new vertices numbered on from the soup's and equal to the fill's,
+// faces over ids that exist, each replaced face a face of the soup.
+void CheckPatches(const dot::PolygonSoup& soup, const dot::SoupFillResult& r) {
+  const auto sent = static_cast<int64_t>(soup.vertices.size());
+  const auto patches = dot::PatchesAsSent(r, sent);
+  if (static_cast<int32_t>(patches.size()) != r.fill.report.filled) {
+    Fail("patches are not one per filled hole");
+  }
+  int64_t next = sent;
+  for (const dot::SentPatch& p : patches) {
+    if (p.first_vertex != next) Fail("patch vertices are not numbered on");
+    for (size_t k = 0; k < p.new_vertices.size(); ++k) {
+      const dot::Vec3& a = p.new_vertices[k];
+      const dot::Vec3& b =
+          r.fill.mesh.vertices[r.input_vertices + (next - sent) + k];
+      if (!(a == b)) Fail("a patch vertex is not the fill's");
+    }
+    next += static_cast<int64_t>(p.new_vertices.size());
+    auto check = [&](const dot::Triangle& t) {
+      for (int32_t v : t) {
+        if (v < 0 || v >= next) Fail("a patch face names no vertex");
+      }
+    };
+    for (const dot::Triangle& t : p.faces) check(t);
+    for (size_t k = 0; k < p.replaced_faces.size(); ++k) {
+      if (p.replaced_faces[k] < 0 ||
+          p.replaced_faces[k] >= static_cast<int32_t>(soup.faces.size())) {
+        Fail("a replaced face is not a face of the soup");
+      }
+      for (const dot::Triangle& t : p.replacements[k]) check(t);
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -147,5 +183,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Fail("FillSoup's input counts are not the repaired mesh's");
   }
   CheckFill(mesh, r.fill);
+  CheckPatches(soup, r);
   return 0;
 }
