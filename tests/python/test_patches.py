@@ -168,6 +168,12 @@ def test_apply_refuses_patches_of_another_mesh(client):
                                   np.zeros((0, 3), np.int32),
                                   {3: np.array([[0, 1, 2]], np.int32)})],
             answer.report).apply(np.eye(4)[:, :3], [[0, 1, 2], [1, 2, 3]])
+    with pytest.raises(ValueError, match="refers to vertex 9, but the mesh "
+                       "with the patches has 4 vertices"):
+        dot_client.FillPatches(
+            [dot_client.HolePatch(0, 4, np.zeros((0, 3)),
+                                  np.array([[0, 1, 9]], np.int32))],
+            answer.report).apply(np.eye(4)[:, :3], [[0, 1, 2], [1, 2, 3]])
 
 
 def test_the_request_asks_for_patches():

@@ -360,24 +360,28 @@ class FillPatches(_Plain):
                 if len(triangles) == 0:
                     raise ValueError(f"face {face} is replaced by nothing")
                 replaced[face] = triangles
-        rows: List[np.ndarray] = list(f)
-        appended: List[np.ndarray] = []
-        for face, triangles in replaced.items():
-            rows[face] = triangles[0]
-            appended.extend(triangles[1:])
-        for p in self.patches:
-            appended.extend(p.faces)
-        for t in appended:
-            bad = (t < 0) | (t >= count)
-            if bad.any():
-                raise ValueError(f"a patch face refers to vertex "
-                                 f"{int(t[bad][0])} of {count}")
+        firsts = {face: t[0] for face, t in replaced.items()}
+        appended = [t[1:] for t in replaced.values()]
+        appended += [p.faces for p in self.patches]
+        extra = np.concatenate([np.zeros((0, 3), dtype=np.int64)] + [
+            np.asarray(t, dtype=np.int64).reshape(-1, 3) for t in appended])
+        every = np.concatenate([extra] + [
+            np.asarray(t, dtype=np.int64).reshape(-1, 3)
+            for t in firsts.values()])
+        bad = (every < 0) | (every >= count)
+        if bad.any():
+            raise ValueError(f"a patch triangle refers to vertex "
+                             f"{int(every[bad][0])}, but the mesh with the "
+                             f"patches has {count} vertices")
         out_vertices = np.concatenate(parts) if len(parts) > 1 else v.copy()
         if isinstance(f, np.ndarray) and f.shape[1] == 3:
-            out = np.array(rows + appended, dtype=np.int64).reshape(-1, 3)
-            return out_vertices, out.astype(np.int32)
+            out = f.copy()
+            for face, t in firsts.items():
+                out[face] = t
+            return out_vertices, np.concatenate([out, extra]).astype(np.int32)
+        rows = [firsts.get(i, face) for i, face in enumerate(f)]
         return out_vertices, [np.asarray(r, dtype=np.int64)
-                              for r in rows + appended]
+                              for r in rows + list(extra)]
 
 
 @dataclass
