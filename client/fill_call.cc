@@ -76,7 +76,7 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   }
   stream->WritesDone();
   wire::MeshAssembler assembler;
-  wire::PatchReader patches;
+  wire::PatchReader patches(mesh.vertices.size());
   v1::FillHolesResponse response;
   bool have_report = false;
   Status assembled = OkStatus();

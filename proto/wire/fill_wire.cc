@@ -242,17 +242,20 @@ Status PatchReader::Add(const v1::HolePatch& m) {
                            std::to_string(m.hole()) +
                            " has a partial vertex or triangle");
   }
+  if (m.first_vertex() != next_vertex_) {
+    return InvalidArgument(
+        "the patch of hole " + std::to_string(m.hole()) + " starts at vertex " +
+        std::to_string(m.first_vertex()) + ", not " +
+        std::to_string(next_vertex_) +
+        ": it does not continue where the last message ended");
+  }
   const bool continues = !patches_.empty() && patches_.back().hole == m.hole();
   SentPatch* p = continues ? &patches_.back() : &patches_.emplace_back();
   if (!continues) {
     p->hole = m.hole();
     p->first_vertex = static_cast<int32_t>(m.first_vertex());
   }
-  if (m.first_vertex() !=
-      static_cast<size_t>(p->first_vertex) + p->new_vertices.size()) {
-    return InvalidArgument("the patch of hole " + std::to_string(m.hole()) +
-                           " does not continue where the last message ended");
-  }
+  next_vertex_ += static_cast<size_t>(m.vertices_size() / 3);
   for (int i = 0; i < m.vertices_size(); i += 3) {
     p->new_vertices.push_back(
         {m.vertices(i), m.vertices(i + 1), m.vertices(i + 2)});

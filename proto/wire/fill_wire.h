@@ -68,13 +68,17 @@ class PatchWriter {
 };
 
 // Reassembles the patches of a FillHoles answer, checking that each message
-// continues the last (ids in order, vertices numbered on).
+// continues the last: a patch's messages one after another, its vertices
+// numbered on; the first patch's new vertices right after the
+// `sent_vertices` the client sent, each next patch's after the last one's.
 class PatchReader {
  public:
+  explicit PatchReader(size_t sent_vertices) : next_vertex_(sent_vertices) {}
   Status Add(const v1::HolePatch& message);
   std::vector<SentPatch>& patches() { return patches_; }
 
  private:
+  size_t next_vertex_;  // the id the next new vertex must have
   std::vector<SentPatch> patches_;
 };
 

@@ -9,6 +9,7 @@
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -18,6 +19,7 @@
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.pb.h"
+#include "wire/fill_wire.h"
 #include "wire/wire.h"
 
 #ifndef DOT_GOLDEN_DIR
@@ -245,6 +247,148 @@ TEST(GoldenStreamTest, DamagedStreamsAreRefused) {
     EXPECT_NE(s.message.find("out of order: triangle"), std::string::npos)
         << s.message;
   }
+}
+
+// The patches answer (FILL_ANSWER_PATCHES) as the C++ client reads it
+// (wire::PatchReader, as FillRemote uses it): the patch of a hole whose
+// boundary edge protection split, over several 1 KiB messages, equal to the
+// patch derived from dotctl --local's whole mesh; applied to the mesh as
+// sent it gives that whole mesh.
+TEST(GoldenStreamTest, FillHolesPatchesReassembleAndRebuildTheLocalMesh) {
+  const auto messages =
+      ReadStream<v1::FillHolesResponse>("fill_holes_patches.stream");
+  const Struct doc = ReadJson("fill_holes_patches.json");
+  const Struct& request = Field(doc, "request").struct_value();
+  const Struct& expected = Field(doc, "expected").struct_value();
+  ASSERT_FALSE(messages.empty());
+  ASSERT_TRUE(messages.back().has_report());
+  const std::vector<Vec3> sent = Points(Field(request, "vertices"));
+  wire::PatchReader reader(sent.size());
+  int progress = 0, patch_messages = 0;
+  for (const auto& m : messages) {
+    EXPECT_FALSE(m.has_mesh());  // only what is new
+    progress += m.has_progress();
+    if (!m.has_patch()) continue;
+    ++patch_messages;
+    EXPECT_EQ(m.patch().hole(), 1);
+    const Status s = reader.Add(m.patch());
+    ASSERT_TRUE(s.ok()) << s.message;
+  }
+  EXPECT_GE(progress, 1);
+  EXPECT_GE(patch_messages, 2);  // one patch, continued
+  const v1::FillReport& report = messages.back().report();
+  EXPECT_EQ(report.version(), 2u);
+  EXPECT_EQ(report.filled(), Field(expected, "filled").number_value());
+  EXPECT_EQ(report.added_vertices(),
+            Field(expected, "added_vertices").number_value());
+  ASSERT_EQ(report.holes_size(), 2);
+  EXPECT_EQ(report.holes(0).status(), v1::HOLE_STATUS_SKIPPED);
+  EXPECT_EQ(report.holes(1).status(), v1::HOLE_STATUS_FILLED);
+  EXPECT_EQ(report.holes(1).escalation(), v1::ESCALATION_PROTECTED_EDGES);
+
+  const auto& want = Field(expected, "patches").list_value();
+  const std::vector<SentPatch>& got = reader.patches();
+  ASSERT_EQ(got.size(), static_cast<size_t>(want.values_size()));
+  const Struct& w = want.values(0).struct_value();
+  EXPECT_EQ(got[0].hole, Field(w, "hole").number_value());
+  EXPECT_EQ(got[0].first_vertex, static_cast<int32_t>(sent.size()));
+  ExpectSameMesh(MeshData{got[0].new_vertices, got[0].faces},
+                 Points(Field(w, "vertices")), Triangles(Field(w, "faces")));
+  const auto& replaced = Field(w, "replaced_faces").list_value();
+  ASSERT_EQ(got[0].replaced_faces.size(),
+            static_cast<size_t>(replaced.values_size()));
+  for (int k = 0; k < replaced.values_size(); ++k) {
+    const Struct& r = replaced.values(k).struct_value();
+    EXPECT_EQ(got[0].replaced_faces[k], Field(r, "face").number_value());
+    EXPECT_EQ(got[0].replacements[k], Triangles(Field(r, "triangles")));
+  }
+
+  // Applied to the mesh as sent: the whole mesh of the local run.
+  std::vector<Vec3> vertices = sent;
+  std::vector<Triangle> faces;
+  const std::vector<Triangle> sent_faces = Triangles(Field(request, "faces"));
+  for (size_t f = 0; f < sent_faces.size(); ++f) {
+    const auto& ids = got[0].replaced_faces;
+    if (std::find(ids.begin(), ids.end(), static_cast<int32_t>(f)) ==
+        ids.end()) {
+      faces.push_back(sent_faces[f]);
+    }
+  }
+  for (const SentPatch& p : got) {
+    vertices.insert(vertices.end(), p.new_vertices.begin(),
+                    p.new_vertices.end());
+    for (const auto& pieces : p.replacements) {
+      faces.insert(faces.end(), pieces.begin(), pieces.end());
+    }
+    faces.insert(faces.end(), p.faces.begin(), p.faces.end());
+  }
+  const Struct& whole = Field(expected, "whole_mesh").struct_value();
+  auto canonical = [](std::vector<Triangle> t) {
+    for (Triangle& x : t) {
+      std::rotate(x.begin(), std::min_element(x.begin(), x.end()), x.end());
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  ExpectSameMesh(MeshData{vertices, canonical(faces)},
+                 Points(Field(whole, "vertices")),
+                 canonical(Triangles(Field(whole, "faces"))));
+
+  // A damaged stream is named: the first patch message twice.
+  std::vector<v1::HolePatch> damaged;
+  for (const auto& m : messages) {
+    if (m.has_patch()) damaged.push_back(m.patch());
+  }
+  damaged.insert(damaged.begin() + 1, damaged.front());
+  wire::PatchReader again(sent.size());
+  Status s = OkStatus();
+  for (const auto& m : damaged) {
+    if (s.ok()) s = again.Add(m);
+  }
+  EXPECT_NE(s.message.find("does not continue where the last message ended"),
+            std::string::npos)
+      << s.message;
+}
+
+// The recorded uploads are what FillRequestWriter writes for the same mesh
+// and options (1 KiB slices), and FillRequestReader reads them back.
+TEST(GoldenStreamTest, FillHolesUploadsAreWhatTheWriterWrites) {
+  for (const std::string name : {"fill_holes", "fill_holes_patches"}) {
+    const auto recorded = ReadStream<v1::FillHolesRequest>(name + ".requests");
+    const Struct doc = ReadJson(name + ".json");
+    const Struct& request = Field(doc, "request").struct_value();
+    ASSERT_FALSE(recorded.empty()) << name;
+    PolygonSoup soup;
+    soup.vertices = Points(Field(request, "vertices"));
+    for (const Triangle& t : Triangles(Field(request, "faces"))) {
+      soup.faces.push_back({t[0], t[1], t[2]});
+    }
+    wire::FillRequestWriter writer(
+        recorded[0].id(), recorded[0].options(), soup,
+        static_cast<size_t>(Field(request, "upload_bytes").number_value()));
+    size_t k = 0;
+    for (v1::FillHolesRequest m; writer.Next(&m); ++k) {
+      ASSERT_LT(k, recorded.size()) << name;
+      EXPECT_EQ(m.SerializeAsString(), recorded[k].SerializeAsString())
+          << name << " message " << k;
+    }
+    EXPECT_EQ(k, recorded.size()) << name;
+    wire::FillRequestReader reader(1 << 20, 1 << 20);
+    for (const auto& m : recorded) {
+      const Status s = reader.Add(m);
+      ASSERT_TRUE(s.ok()) << name << ": " << s.message;
+    }
+    PolygonSoup read;
+    ASSERT_TRUE(reader.Finish(&read).ok()) << name;
+    EXPECT_EQ(read.faces, soup.faces) << name;
+    ASSERT_EQ(read.vertices.size(), soup.vertices.size()) << name;
+    for (size_t v = 0; v < soup.vertices.size(); ++v) {
+      EXPECT_EQ(read.vertices[v], soup.vertices[v]) << name << " " << v;
+    }
+  }
+  const auto patches =
+      ReadStream<v1::FillHolesRequest>("fill_holes_patches.requests");
+  EXPECT_EQ(patches[0].options().answer(), v1::FILL_ANSWER_PATCHES);
 }
 
 }  // namespace
