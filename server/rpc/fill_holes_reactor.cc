@@ -24,8 +24,7 @@ FillHolesReactor::FillHolesReactor(JobRunner* runner,
                                    grpc::CallbackServerContext* context)
     : runner_(runner),
       context_(context),
-      reader_(static_cast<size_t>(runner->options().fill_max_vertices),
-              static_cast<size_t>(runner->options().fill_max_faces)),
+      upload_(runner),
       timer_guard_(std::make_shared<TimerGuard>()) {
   timer_guard_->reactor = this;
   // A client that opens the stream and sends nothing holds it no longer
@@ -80,80 +79,47 @@ void FillHolesReactor::OnReadDone(bool ok) {
 
 grpc::Status FillHolesReactor::Accept() {
   v1::FillHolesRequest m;
-  const size_t position = reader_.messages();
   if (!ParseRaw(&request_, &m)) {
     // Before: the upload ended there as if the client had half-closed, and
     // the partial mesh was filled and answered OK.
     return {grpc::StatusCode::INVALID_ARGUMENT,
-            "message " + std::to_string(position) +
+            "message " + std::to_string(upload_.messages()) +
                 " of the upload does not parse as a FillHolesRequest"};
   }
   if (!job_) {
-    grpc::Status refused;
-    auto job =
-        runner_->AdmitTask("FillHoles", m.id(), m.options().time_budget_ms(),
-                           context_->deadline(), &refused);
-    job->log_detail = "input=incomplete";  // until the fill says more
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      job_ = std::move(job);
-    }
-    if (!refused.ok()) return refused;
-    first_message_timer_.Cancel();  // the job's deadline bounds it now
-    // Options are checked before the mesh is read, not after, and once.
-    Status s = wire::FillOptionsFromWire(m.options(), &options_);
-    if (s.ok()) s = wire::FillAnswerFromWire(m.options(), &answer_);
-    if (!s.ok()) return wire::ToGrpcStatus(s);
-    ApplyServerLimits(runner_->options(), m.options().memory_budget_bytes(),
-                      runner_->compute_threads(), &options_);
-    SetTimer(&upload_timer_, ToSystem(job_->deadline));
-    // A drain ends an unfinished upload at once (from a gRPC thread).
-    runner_->SetOnDrain(job_.get(), [this] {
-      SetTimer(&drain_timer_, std::chrono::system_clock::now());
-    });
+    const grpc::Status admitted = Admit(m);
+    if (!admitted.ok()) return admitted;
   }
-  // A slow upload is bound by the same deadline, drain and cancel as the
-  // fill itself.
-  if (job_->cancel) return StoppedStatus(job_->stop);
-  if (Clock::now() >= job_->deadline) {
-    job_->Stop(job_->deadline_is_limit ? StopReason::kServerBudget
-                                       : StopReason::kClientDeadline);
-    return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "the mesh did not arrive within the time limit"};
-  }
-  const Status s = reader_.Add(m);
-  {
-    std::lock_guard<std::mutex> lock(mu_);
-    messages_read_ = reader_.messages();
-  }
-  if (!s.ok()) return wire::ToGrpcStatus(s);
-  const int64_t bytes =
-      FillMemoryBytes(static_cast<int64_t>(reader_.vertices()),
-                      static_cast<int64_t>(reader_.faces()));
-  if (bytes > runner_->options().fill_memory_bytes) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "this mesh needs about " + std::to_string(bytes >> 20) +
-                " MiB to fill, more than the server's memory for FillHoles "
-                "calls (" +
-                std::to_string(runner_->options().fill_memory_bytes >> 20) +
-                " MiB); send it in parts or ask for a larger "
-                "--fill-memory-mb"};
-  }
-  if (!ChargeUpTo(bytes)) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "the server's memory for FillHoles calls (" +
-                std::to_string(runner_->options().fill_memory_bytes >> 20) +
-                " MiB) is taken by other calls; this mesh needs about " +
-                std::to_string(bytes >> 20) + " MiB so far; retry later"};
-  }
-  return grpc::Status::OK;
+  const grpc::Status s = upload_.Add(m, *job_);
+  std::lock_guard<std::mutex> lock(mu_);
+  messages_read_ = upload_.messages();
+  return s;
 }
 
-bool FillHolesReactor::ChargeUpTo(int64_t bytes) {
-  if (bytes <= charged_) return true;
-  if (!runner_->ChargeFillMemory(bytes - charged_)) return false;
-  charged_ = bytes;
-  return true;
+grpc::Status FillHolesReactor::Admit(const v1::FillHolesRequest& first) {
+  grpc::Status refused;
+  auto job = runner_->AdmitTask("FillHoles", first.id(),
+                                first.options().time_budget_ms(),
+                                context_->deadline(), &refused);
+  job->log_detail = "input=incomplete";  // until the fill says more
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    job_ = std::move(job);
+  }
+  if (!refused.ok()) return refused;
+  first_message_timer_.Cancel();  // the job's deadline bounds it now
+  // Options are checked before the mesh is read, not after, and once.
+  Status s = wire::FillOptionsFromWire(first.options(), &options_);
+  if (s.ok()) s = wire::FillAnswerFromWire(first.options(), &answer_);
+  if (!s.ok()) return wire::ToGrpcStatus(s);
+  ApplyServerLimits(runner_->options(), first.options().memory_budget_bytes(),
+                    runner_->compute_threads(), &options_);
+  SetTimer(&upload_timer_, ToSystem(job_->deadline));
+  // A drain ends an unfinished upload at once (from a gRPC thread).
+  runner_->SetOnDrain(job_.get(), [this] {
+    SetTimer(&drain_timer_, std::chrono::system_clock::now());
+  });
+  return grpc::Status::OK;
 }
 
 void FillHolesReactor::OnUploadTimer() {
@@ -192,7 +158,7 @@ void FillHolesReactor::OnUploadTimer() {
 }
 
 void FillHolesReactor::StartFill() {
-  const Status s = reader_.Finish(&soup_);
+  const Status s = upload_.Finish(&soup_);
   if (!s.ok() || !job_) {
     FinishWith(
         wire::ToGrpcStatus(s.ok() ? InvalidArgument("no mesh was sent") : s));
@@ -343,7 +309,6 @@ void FillHolesReactor::OnDone() {
     if (job_->stop == StopReason::kNone) job_->Stop(StopReason::kClientGone);
     final_status_ = StoppedStatus(job_->stop);
   }
-  runner_->ReleaseFillMemory(charged_);
   runner_->Answered(*job_, final_status_);
   delete this;  // gRPC's callback API: a reactor owns itself until OnDone
 }

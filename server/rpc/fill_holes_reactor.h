@@ -22,6 +22,7 @@
 #include "dot/dot.h"
 #include "dot/v1/triangulation.pb.h"
 #include "rpc/answer_writer.h"
+#include "rpc/fill_upload.h"
 #include "rpc/job.h"
 #include "wire/fill_wire.h"
 #include "wire/wire.h"
@@ -41,6 +42,9 @@ class FillHolesReactor final
  private:
   // One message of the upload; not OK ends the call with that status.
   grpc::Status Accept();
+  // The first message: the job admitted, its options checked once, the
+  // upload timers set.
+  grpc::Status Admit(const v1::FillHolesRequest& first);
   // The upload is complete: the fill is queued.
   void StartFill();
   // The fill itself, on a compute thread.
@@ -59,17 +63,13 @@ class FillHolesReactor final
   void OnUploadTimer();
   // Sets `timer` to call OnUploadTimer at `when`, if the reactor is alive.
   void SetTimer(grpc::Alarm* timer, std::chrono::system_clock::time_point when);
-  // Brings the memory charge up to `bytes`; false when the server's
-  // FillHoles memory is spent.
-  bool ChargeUpTo(int64_t bytes);
 
   JobRunner* const runner_;
   grpc::CallbackServerContext* const context_;
-  wire::FillRequestReader reader_;
+  FillUpload upload_;
   grpc::ByteBuffer request_;  // the read in flight
   std::shared_ptr<Job> job_;
   grpc::Status final_status_;
-  int64_t charged_ = 0;       // FillHoles memory held by this call
   size_t messages_read_ = 0;  // under mu_: for the timers' message
 
   // Input and output of the fill; touched by the compute thread only while

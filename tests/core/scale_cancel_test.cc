@@ -64,8 +64,7 @@ double CancelLatencyMs(Stage stage, StatusCode* code) {
   };
   const Result r = Triangulate(p, {}, control);
   *code = r.status.code;
-  return std::chrono::duration<double, std::milli>(Clock::now() - cancelled_at)
-      .count();
+  return MsSince(cancelled_at);
 }
 
 // The stop latency is a figure, printed here and measured by

@@ -11,27 +11,13 @@
 #include <new>
 
 #include "dot/dot.h"
+#include "fixtures/runner_fixture.h"
 #include "rpc/job.h"
 
 namespace dot::server {
 namespace {
 
-MetricsOptions WithoutHttp() {
-  MetricsOptions o;
-  o.port = 0;  // the registry alone: no endpoint to open or close
-  return o;
-}
-
-struct Runner {
-  explicit Runner(ServiceOptions o = {}) : options(std::move(o)) {}
-  ServiceOptions options;
-  ComputePool pool{ComputePoolOptions{1, 4}};
-  ServerMetrics metrics{WithoutHttp()};
-  JobRunner runner{options, &pool, /*helpers=*/nullptr, /*cache=*/nullptr,
-                   &metrics};
-};
-
-constexpr auto kNoDeadline = std::chrono::system_clock::time_point::max();
+using testing::kNoDeadline;
 
 // Runs `work` on the pool and waits for on_done.
 Status RunOnPool(JobRunner& runner, const std::shared_ptr<Job>& job,
@@ -44,7 +30,7 @@ Status RunOnPool(JobRunner& runner, const std::shared_ptr<Job>& job,
 }
 
 TEST(JobRunnerTest, AdmissionChecksTheIdAndTracksTheJobUntilAnswered) {
-  Runner r;
+  testing::Runner r;
   grpc::Status error;
   auto refused = r.runner.AdmitTask("FillHoles", std::string(300, 'x'), 0,
                                     kNoDeadline, &error);
@@ -62,7 +48,7 @@ TEST(JobRunnerTest, AdmissionChecksTheIdAndTracksTheJobUntilAnswered) {
 TEST(JobRunnerTest, TheDeadlineIsTheSmallestOfLimitBudgetAndClient) {
   ServiceOptions o;
   o.max_compute_ms = 10000;
-  Runner r(o);
+  testing::Runner r(o);
   grpc::Status error;
   auto budget = r.runner.AdmitTask("T", "", 2000, kNoDeadline, &error);
   EXPECT_EQ(budget->deadline - budget->arrived, std::chrono::seconds(2));
@@ -82,7 +68,7 @@ TEST(JobRunnerTest, TheDeadlineIsTheSmallestOfLimitBudgetAndClient) {
 TEST(JobRunnerTest, APolygonIsAdmittedThroughTheSamePathPlusItsOwnChecks) {
   ServiceOptions o;
   o.max_vertices = 10;
-  Runner r(o);
+  testing::Runner r(o);
   v1::TriangulateRequest request;
   request.set_id("p");
   for (int i = 0; i < 12; ++i) {
@@ -111,7 +97,7 @@ TEST(JobRunnerTest, APolygonIsAdmittedThroughTheSamePathPlusItsOwnChecks) {
 }
 
 TEST(JobRunnerTest, WorkRunsWithTheJobsControlAndItsFailuresAreItsStatus) {
-  Runner r;
+  testing::Runner r;
   grpc::Status error;
   auto job = r.runner.AdmitTask("T", "w", 3000, kNoDeadline, &error);
   const std::atomic<bool>* seen_cancel = nullptr;
@@ -138,7 +124,7 @@ TEST(JobRunnerTest, WorkRunsWithTheJobsControlAndItsFailuresAreItsStatus) {
 }
 
 TEST(JobRunnerTest, AStopBeforeTheWorkStartsMeansItNeverRuns) {
-  Runner r;
+  testing::Runner r;
   grpc::Status error;
   bool ran = false;
   auto work = [&ran](Job&, const Control&) {
@@ -162,7 +148,7 @@ TEST(JobRunnerTest, AStopBeforeTheWorkStartsMeansItNeverRuns) {
 }
 
 TEST(JobRunnerTest, ADeadlineTheWorkMeetsIsChargedToWhoeverSetIt) {
-  Runner r;
+  testing::Runner r;
   grpc::Status error;
   auto job = r.runner.AdmitTask("T", "b", 60000, kNoDeadline, &error);
   RunOnPool(r.runner, job, [](Job&, const Control&) {
@@ -173,7 +159,7 @@ TEST(JobRunnerTest, ADeadlineTheWorkMeetsIsChargedToWhoeverSetIt) {
 }
 
 TEST(JobRunnerTest, ADrainRefusesNewJobsAndReachesTheAdmittedOnes) {
-  Runner r;
+  testing::Runner r;
   grpc::Status error;
   auto job = r.runner.AdmitTask("T", "a", 0, kNoDeadline, &error);
   int drained = 0;

@@ -16,6 +16,7 @@
 #include <set>
 #include <thread>
 
+#include "dot/elapsed.h"
 #include "fixtures/service_fixture.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "remote_call.h"
@@ -306,9 +307,7 @@ void ExpectCancelFreesTheWorker(const server::ServerConfig& config,
   ASSERT_TRUE(out.status.ok()) << out.status.error_message();
   // The single worker was freed: the quick call ran. How soon is a figure
   // (scripts/stop_latency.sh), not a wall-clock bound on a loaded machine.
-  const double freed_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - cancelled_at)
-          .count();
+  const double freed_ms = MsSince(cancelled_at);
   std::printf(
       "worker free and next call answered %.1f ms after the cancel "
       "(queued %.1f ms)\n",

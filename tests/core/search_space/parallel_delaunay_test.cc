@@ -107,9 +107,7 @@ TEST(ParallelDelaunayTest, CancelAndDeadlineStopTheParallelInsertion) {
   std::vector<Triangle> faces;
   int64_t tets = 0;
   Status s = CgalDelaunayFaces(points, WithThreads(2), control, &faces, &tets);
-  const double ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - cancelled_at)
-          .count();
+  const double ms = MsSince(cancelled_at);
   EXPECT_EQ(s.code, StatusCode::kCancelled) << s.message;
   std::printf("parallel Delaunay step stopped %.1f ms after the cancel\n",
               ms);  // a figure, not a bound: see scripts/stop_latency.sh
