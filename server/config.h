@@ -26,6 +26,14 @@ struct TlsOptions {
   std::string client_ca;  // PEM; set: clients must present a certificate
 };
 
+// The core's helper options, with the flag that raises their memory cap
+// named in out-of-memory messages.
+inline DelaunayHelperOptions HelperDefaults() {
+  DelaunayHelperOptions h;
+  h.memory_limit_setting = "dot-server --helper-memory-mb";
+  return h;
+}
+
 struct ServerConfig {
   std::string listen = "0.0.0.0:50051";
   // A second, plaintext endpoint serving only gRPC health (e.g.
@@ -38,7 +46,7 @@ struct ServerConfig {
   bool exit_with_stdin = false;
   ServiceOptions service;
   ComputePoolOptions pool;
-  DelaunayHelperOptions helpers;
+  DelaunayHelperOptions helpers = HelperDefaults();
   MetricsOptions metrics;
   TlsOptions tls;
   int64_t cache_bytes = int64_t{256} << 20;  // search-space cache; 0: off

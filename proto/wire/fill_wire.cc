@@ -250,12 +250,34 @@ Status PatchReader::Add(const v1::HolePatch& m) {
         ": it does not continue where the last message ended");
   }
   const bool continues = !patches_.empty() && patches_.back().hole == m.hole();
+  if (!continues && !patches_.empty() && m.hole() < patches_.back().hole) {
+    return InvalidArgument("the patch of hole " + std::to_string(m.hole()) +
+                           " comes after hole " +
+                           std::to_string(patches_.back().hole) +
+                           "'s: patches come in hole order");
+  }
   SentPatch* p = continues ? &patches_.back() : &patches_.emplace_back();
   if (!continues) {
     p->hole = m.hole();
     p->first_vertex = static_cast<int32_t>(m.first_vertex());
   }
   next_vertex_ += static_cast<size_t>(m.vertices_size() / 3);
+  auto check = [&](const auto& ids) {
+    for (uint32_t v : ids) {
+      if (v >= next_vertex_) {
+        return InvalidArgument("the patch of hole " + std::to_string(m.hole()) +
+                               " names vertex " + std::to_string(v) +
+                               ", but only " + std::to_string(next_vertex_) +
+                               " exist");
+      }
+    }
+    return OkStatus();
+  };
+  Status ids = check(m.faces());
+  for (const v1::ReplacedFace& r : m.replaced_faces()) {
+    if (ids.ok()) ids = check(r.triangles());
+  }
+  if (!ids.ok()) return ids;
   for (int i = 0; i < m.vertices_size(); i += 3) {
     p->new_vertices.push_back(
         {m.vertices(i), m.vertices(i + 1), m.vertices(i + 2)});

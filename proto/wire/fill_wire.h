@@ -5,6 +5,7 @@
 #ifndef DOT_PROTO_FILL_WIRE_H_
 #define DOT_PROTO_FILL_WIRE_H_
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -58,7 +59,7 @@ class FillRequestWriter {
 class PatchWriter {
  public:
   PatchWriter(const std::vector<SentPatch>& patches, size_t max_bytes)
-      : patches_(&patches), max_bytes_(max_bytes) {}
+      : patches_(&patches), max_bytes_(std::max<size_t>(1, max_bytes)) {}
   bool Next(v1::HolePatch* message);
 
  private:
@@ -70,7 +71,8 @@ class PatchWriter {
 // Reassembles the patches of a FillHoles answer, checking that each message
 // continues the last: a patch's messages one after another, its vertices
 // numbered on; the first patch's new vertices right after the
-// `sent_vertices` the client sent, each next patch's after the last one's.
+// `sent_vertices` the client sent, each next patch's after the last one's;
+// holes in increasing id order; faces over vertices that exist by then.
 class PatchReader {
  public:
   explicit PatchReader(size_t sent_vertices) : next_vertex_(sent_vertices) {}

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// FillHoles: the mesh streams in (first message: id and options), the fill
-// runs on the compute pool as one job, and progress per hole, the filled
-// mesh in chunks and the report stream back. The reactor finishes only
-// after the job's on_done, so the job never outlives it.
+// FillHoles: the mesh streams in (first message: id and options; each
+// message accepted by FillUpload), the fill runs on the compute pool as one
+// job (dot::FillSoup), and progress per hole, the answer (the filled mesh in
+// chunks, or only the patches) and the report stream back. The reactor finishes
+// only after the job's on_done, so the job never outlives it.
 //
 // Messages travel raw (grpc::ByteBuffer) and are parsed here, so that a
 // message that does not parse is an error naming its position, not an end

@@ -53,7 +53,7 @@ JobRunner::JobRunner(const ServiceOptions& options, ComputePool* pool,
       cache_(cache),
       metrics_(metrics) {}
 
-std::shared_ptr<Job> JobRunner::AdmitTask(
+std::shared_ptr<Job> JobRunner::NewJob(
     const char* rpc, const std::string& id, uint32_t budget_ms,
     std::chrono::system_clock::time_point client_deadline,
     grpc::Status* error) {
@@ -62,6 +62,10 @@ std::shared_ptr<Job> JobRunner::AdmitTask(
   job->rpc = rpc;
   job->arrived = Clock::now();
   job->options = options_.solve;
+  if (draining_) {
+    *error = ShuttingDown();
+    return job;
+  }
   if (id.size() > kMaxRequestIdBytes) {
     *error = grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           "request id has " + std::to_string(id.size()) +
@@ -71,10 +75,20 @@ std::shared_ptr<Job> JobRunner::AdmitTask(
   }
   job->id = id;
   SetDeadline(options_, budget_ms, client_deadline, job.get());
-  if (!Track(job.get())) {
-    *error = grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                          "server is shutting down; retry on another replica");
-  }
+  return job;
+}
+
+grpc::Status JobRunner::ShuttingDown() {
+  return {grpc::StatusCode::UNAVAILABLE,
+          "server is shutting down; retry on another replica"};
+}
+
+std::shared_ptr<Job> JobRunner::AdmitTask(
+    const char* rpc, const std::string& id, uint32_t budget_ms,
+    std::chrono::system_clock::time_point client_deadline,
+    grpc::Status* error) {
+  auto job = NewJob(rpc, id, budget_ms, client_deadline, error);
+  if (error->ok() && !Track(job.get())) *error = ShuttingDown();
   return job;
 }
 
@@ -82,11 +96,11 @@ std::shared_ptr<Job> JobRunner::Admit(
     const v1::TriangulateRequest& request,
     std::chrono::system_clock::time_point client_deadline, const char* rpc,
     grpc::Status* error) {
-  auto job = AdmitTask(rpc, request.id(), request.options().time_budget_ms(),
-                       client_deadline, error);
+  auto job = NewJob(rpc, request.id(), request.options().time_budget_ms(),
+                    client_deadline, error);
   job->wire = request.options();
   if (!error->ok()) return job;
-  // The polygon's own checks.
+  // The polygon's own checks; only a job that passes them is tracked.
   const Status shape =
       wire::ProblemFromRequest(request, &job->problem, &job->options);
   if (!shape.ok()) {
@@ -104,6 +118,7 @@ std::shared_ptr<Job> JobRunner::Admit(
   job->options.memory_budget_bytes =
       RequestMemoryBudget(options_, request.options().memory_budget_bytes());
   job->options.all_space_max_vertices = options_.solve.all_space_max_vertices;
+  if (!Track(job.get())) *error = ShuttingDown();
   return job;
 }
 

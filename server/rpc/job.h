@@ -97,10 +97,11 @@ class JobRunner {
 
   // Admission, one path for every call: drain, id, the deadline (the
   // smallest of the server's limit, `budget_ms` and the client's RPC
-  // `deadline`), tracking for drains. When `error` is not OK the job was
-  // refused and must not be started; it is still answered (Answered) so
-  // the refusal is counted and logged. For calls that are not one polygon
-  // (FillHoles), which set log_detail themselves.
+  // `deadline`), then tracking for drains once every check has passed.
+  // When `error` is not OK the job was refused and must not be started; it
+  // is still answered (Answered) so the refusal is counted and logged. For
+  // calls that are not one polygon (FillHoles), which set log_detail
+  // themselves.
   std::shared_ptr<Job> AdmitTask(const char* rpc, const std::string& id,
                                  uint32_t budget_ms,
                                  std::chrono::system_clock::time_point deadline,
@@ -153,6 +154,12 @@ class JobRunner {
   const ServiceOptions& options() const { return options_; }
 
  private:
+  // The checks every call shares (drain, id, deadline); not tracked yet.
+  std::shared_ptr<Job> NewJob(const char* rpc, const std::string& id,
+                              uint32_t budget_ms,
+                              std::chrono::system_clock::time_point deadline,
+                              grpc::Status* error);
+  static grpc::Status ShuttingDown();
   void Run(Job& job, const Work& work);
   Work TriangulateWork();
   // The Control every computation of `job` runs under.

@@ -373,9 +373,10 @@ def test_fill_loops_fills_exactly_the_selected_loops():
             assert bpy.ops.mesh.dot_fill_loops(stage=stage) == {'FINISHED'}
         # The server was asked for the two loops alone, one vertex each,
         # and filled just those.
-        ((args, _, answer),) = fills.calls
-        assert len(args[2].loops_through) == 2, args[2]
-        assert args[2].stage == stage.lower() and args[2].no_repair
+        ((_, kwargs, answer),) = fills.calls
+        options = kwargs["options"]
+        assert len(options.loops_through) == 2, options
+        assert options.stage == stage.lower() and options.no_repair
         assert (answer.report.loops, answer.report.filled,
                 answer.report.skipped) == (4, 2, 2), stage
         assert len(answer.patches) == 2
@@ -406,8 +407,8 @@ def test_fill_loops_names_a_loop_by_a_vertex_of_its_own():
     with Recording("fill_patches") as fills:
         assert bpy.ops.mesh.dot_fill_loops(stage='REFINE') == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
-    ((args, _, answer),) = fills.calls
-    (named,) = args[2].loops_through
+    ((_, kwargs, answer),) = fills.calls
+    (named,) = kwargs["options"].loops_through
     assert named != 4 * 10 + 4, "the shared corner names both loops"
     assert answer.report.filled == 1
     assert [h.pinched for h in answer.report.holes].count(True) == 2

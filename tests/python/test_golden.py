@@ -206,9 +206,12 @@ def test_damaged_patch_streams():
         return e.value.message
 
     assert "without a report" in refused(patches)
+    first = patches[0].patch
     assert refused(patches[:1] + patches + report) == (
-        "bad mesh from the server: the patch of hole 1 does not continue "
-        "where the last message ended")
+        f"bad mesh from the server: the patch of hole 1 starts at vertex "
+        f"{first.first_vertex}, not "
+        f"{first.first_vertex + len(first.vertices) // 3}: it does not "
+        f"continue where the last message ended")
     assert "does not continue" in refused(patches[:1] + patches[2:] + report)
     # Read as a mesh answer, a patches answer has no mesh (the report's
     # counts name one): refused, not an empty mesh.

@@ -107,8 +107,8 @@ def test_duplicates_and_quads_are_named_as_sent(client):
 def test_loops_through_patches(client):
     v, f = grid_with_holes(16, [(2, 4, 2, 4), (2, 4, 10, 13), (9, 13, 5, 8)])
     answer = client.fill_patches(
-        v, f, dot_client.FillOptions(stage="refine",
-                                     loops_through=(2 * 16 + 3,)))
+        v, f, options=dot_client.FillOptions(stage="refine",
+                                             loops_through=(2 * 16 + 3,)))
     assert answer.report.filled == 1 and answer.report.skipped == 3
     (patch,) = answer.patches
     hole = [h for h in answer.report.holes if h.id == patch.hole][0]
@@ -133,7 +133,7 @@ def test_a_large_patch_continues_over_messages(client, small_chunks):
     with dot_client.Client(small_chunks.address, timeout=60) as small:
         requests = wire.fill_requests("big", options.to_proto("patches"), v, f)
         messages = list(small._stub.FillHoles(requests, timeout=60))
-        answer = small.fill_patches(v, f, options)
+        answer = small.fill_patches(v, f, options=options)
     patch_messages = [m.patch for m in messages if m.HasField("patch")]
     assert len(patch_messages) >= 3
     assert len({m.hole for m in patch_messages}) == 1

@@ -165,9 +165,18 @@ def test_patch_reader_joins_continued_patches():
     ([patch(3, 10, [], [1, 2])],
      "a patch message of hole 3 has a partial vertex or triangle"),
     ([patch(3, 10, [0, 0, 0]), patch(3, 10, [0, 0, 0])],
-     "the patch of hole 3 does not continue where the last message ended"),
+     "the patch of hole 3 starts at vertex 10, not 11: it does not continue "
+     "where the last message ended"),
     ([patch(3, 10, [0, 0, 0]), patch(3, 12)],
-     "the patch of hole 3 does not continue where the last message ended"),
+     "the patch of hole 3 starts at vertex 12, not 11: it does not continue "
+     "where the last message ended"),
+    ([patch(3, 10, [0, 0, 0]), patch(5, 12)],
+     "the patch of hole 5 starts at vertex 12, not 11: it does not continue "
+     "where the last message ended"),
+    ([patch(5, 10, [0, 0, 0]), patch(3, 11)],
+     "the patch of hole 3 comes after hole 5's: patches come in hole order"),
+    ([patch(3, 10, [0, 0, 0], [0, 1, 11])],
+     "the patch of hole 3 names vertex 11, but only 11 exist"),
     ([patch(3, 10, [], [], [(5, [1, 2])])],
      "replaced face 5 has a partial triangle"),
 ])
@@ -177,6 +186,15 @@ def test_patch_reader_refuses(messages, words):
         for m in messages:
             r.add(m)
     assert str(e.value) == words
+
+
+def test_patch_reader_checks_the_first_patch_against_the_upload():
+    r = wire.PatchReader(sent_vertices=10)
+    with pytest.raises(wire.AssemblyError) as e:
+        r.add(patch(0, 999, [0, 0, 0]))
+    assert str(e.value) == ("the patch of hole 0 starts at vertex 999, not "
+                            "10: it does not continue where the last message "
+                            "ended")
 
 
 def test_assemble_patches_needs_a_report():

@@ -80,6 +80,7 @@ TEST(JobRunnerTest, APolygonIsAdmittedThroughTheSamePathPlusItsOwnChecks) {
   auto big = r.runner.Admit(request, kNoDeadline, "Triangulate", &error);
   EXPECT_EQ(error.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(error.error_message().find("at most 10"), std::string::npos);
+  EXPECT_EQ(r.runner.inflight(), 0);  // refused: never tracked
   r.runner.Answered(*big, error);
 
   request.mutable_polygon()->mutable_coordinates()->Truncate(3 * 8);

@@ -237,7 +237,7 @@ def _fill_work(vertices, faces, options):
     def work(client, cancel, progress):
         progress(0.0, "sending the mesh")
         return client.fill_patches(
-            vertices, faces, options, cancel=cancel,
+            vertices, faces, options=options, cancel=cancel,
             progress=lambda p: progress(
                 p.holes_done / max(1, p.holes_total),
                 f"{p.holes_done} of {p.holes_total} holes"))

@@ -509,8 +509,8 @@ class Client:
                                         request_id, timeout, cancel)
         return result
 
-    def fill_patches(self, vertices: ArrayLike, faces: FaceLike,
-                     options: Optional[FillOptions] = None, *,
+    def fill_patches(self, vertices: ArrayLike, faces: FaceLike, *,
+                     options: Optional[FillOptions] = None,
                      progress: Optional[Callable[[FillProgress], None]] = None,
                      request_id: str = "",
                      timeout: Optional[float] = _DEFAULT,
@@ -549,10 +549,11 @@ class Client:
         deadline = self._deadline(timeout)
         requests = wire.fill_requests(str(request_id), message, v, f)
         call = self._stub.FillHoles(requests, timeout=deadline)
-        assemble = (wire.assemble_fill if answer == "mesh"
-                    else wire.assemble_patches)
-        return self._run(call, cancel,
-                         lambda c: assemble(c, on_progress=progress))
+        if answer == "mesh":
+            return self._run(call, cancel, lambda c: wire.assemble_fill(
+                c, on_progress=progress))
+        return self._run(call, cancel, lambda c: wire.assemble_patches(
+            c, on_progress=progress, sent_vertices=len(v)))
 
     # -- Health and info ----------------------------------------------------
 

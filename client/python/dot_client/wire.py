@@ -180,11 +180,14 @@ def _finish_triangulate(request_id: str, summary_proto: Any,
 class PatchReader:
     """Reassembles the HolePatch messages of a patches answer
     (``wire::PatchReader``, check for check and message for message): a
-    message with the hole of the last one continues that patch, and its
-    ``first_vertex`` must follow the vertices received so far."""
+    message with the hole of the last one continues that patch; every
+    message's ``first_vertex`` follows the vertices received so far (the
+    first patch's the ``sent_vertices`` of the upload, when given); holes
+    come in increasing id order; faces name vertices that exist by then."""
 
-    def __init__(self) -> None:
+    def __init__(self, sent_vertices: Optional[int] = None) -> None:
         self._patches: List[Dict[str, Any]] = []
+        self._next = sent_vertices
 
     def add(self, m: Any) -> None:
         """Adds one HolePatch message; raises :class:`AssemblyError` when
@@ -192,19 +195,34 @@ class PatchReader:
         if len(m.vertices) % 3 != 0 or len(m.faces) % 3 != 0:
             raise AssemblyError(f"a patch message of hole {m.hole} has a "
                                 f"partial vertex or triangle")
+        if self._next is None:
+            self._next = m.first_vertex
+        if m.first_vertex != self._next:
+            raise AssemblyError(
+                f"the patch of hole {m.hole} starts at vertex "
+                f"{m.first_vertex}, not {self._next}: it does not continue "
+                f"where the last message ended")
         continues = bool(self._patches) and self._patches[-1]["hole"] == m.hole
+        if not continues and self._patches and \
+                m.hole < self._patches[-1]["hole"]:
+            raise AssemblyError(
+                f"the patch of hole {m.hole} comes after hole "
+                f"{self._patches[-1]['hole']}'s: patches come in hole order")
         if not continues:
             self._patches.append({"hole": m.hole,
                                   "first_vertex": m.first_vertex,
-                                  "count": 0, "vertices": [], "faces": [],
+                                  "vertices": [], "faces": [],
                                   "replaced": []})
         p = self._patches[-1]
-        if m.first_vertex != p["first_vertex"] + p["count"]:
-            raise AssemblyError(f"the patch of hole {m.hole} does not "
-                                f"continue where the last message ended")
+        self._next += len(m.vertices) // 3
+        for ids in [m.faces] + [r.triangles for r in m.replaced_faces]:
+            if len(ids) and max(ids) >= self._next:
+                bad = next(v for v in ids if v >= self._next)
+                raise AssemblyError(
+                    f"the patch of hole {m.hole} names vertex {bad}, but "
+                    f"only {self._next} exist")
         if len(m.vertices):
             p["vertices"].append(_float_array(m.vertices).reshape(-1, 3))
-            p["count"] += len(m.vertices) // 3
         if len(m.faces):
             p["faces"].append(_index_array(m.faces).reshape(-1, 3))
         for r in m.replaced_faces:
@@ -236,13 +254,14 @@ class PatchReader:
 
 def _read_fill(responses: Iterable[Any],
                on_progress: Optional[Callable[[FillProgress], None]],
-               answer: str) -> Tuple[Any, Any]:
+               answer: str,
+               sent_vertices: Optional[int] = None) -> Tuple[Any, Any]:
     """FillRemote's loop over a FillHoles response stream: the report
     message and the mesh (``answer`` "mesh": vertices, faces) or the
     patches; raises :class:`DotError` (``INTERNAL``) with dotctl's
     messages."""
     assembler = MeshAssembler()
-    patches = PatchReader()
+    patches = PatchReader(sent_vertices)
     report = None
     assembled: Optional[str] = None
     for message in responses:
@@ -300,13 +319,16 @@ def assemble_fill(
 
 def assemble_patches(
         responses: Iterable[Any],
-        on_progress: Optional[Callable[[FillProgress], None]] = None
+        on_progress: Optional[Callable[[FillProgress], None]] = None,
+        sent_vertices: Optional[int] = None
 ) -> FillPatches:
     """The FillPatches of a FillHoles response stream (answer
     ``FILL_ANSWER_PATCHES``) that ended OK: its HolePatch messages
-    reassembled by :class:`PatchReader`. Raises :class:`DotError`
-    (``INTERNAL``) as :func:`assemble_fill` does."""
-    report, patches = _read_fill(responses, on_progress, "patches")
+    reassembled by :class:`PatchReader` (the first patch's vertices must
+    follow the upload's ``sent_vertices``, when given). Raises
+    :class:`DotError` (``INTERNAL``) as :func:`assemble_fill` does."""
+    report, patches = _read_fill(responses, on_progress, "patches",
+                                 sent_vertices)
     return FillPatches(patches=patches, report=FillReport.from_proto(report))
 
 

@@ -57,6 +57,9 @@ struct DelaunayHelperOptions {
   std::vector<std::string> arguments;
   // Address-space limit of each helper (setrlimit).
   int64_t memory_limit_bytes = int64_t{4} << 30;
+  // How a user raises that limit, for out-of-memory messages (the server
+  // sets its flag); empty: not named.
+  std::string memory_limit_setting;
 };
 
 class DelaunayHelperPool {

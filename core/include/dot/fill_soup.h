@@ -43,8 +43,10 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options = {},
 // after patch (new_vertices[k] is vertex first_vertex + k); faces use soup
 // vertex ids, a duplicate that repair merged named by its first copy; each
 // soup face that edge protection split is listed with the triangles that
-// replace all of it (a polygon's other triangles included). Faces agree
-// with the repaired orientation.
+// replace all of it (a polygon's other triangles included), once: by the
+// last patch that splits it, when two do. Faces agree with the repaired
+// orientation (RepairReport::reoriented_faces says whether the soup's own
+// faces were flipped).
 struct SentPatch {
   int32_t hole = 0;  // HoleReport::id
   int32_t first_vertex = 0;

@@ -467,7 +467,7 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       }
       if (!refused.empty()) {
         r.status = HoleStatus::kFailed;
-        r.reason = refused + ": left open (fill it alone with --holes)";
+        r.reason = refused + ": left open (fill it in a call of its own)";
       }
     }
     switch (r.status) {

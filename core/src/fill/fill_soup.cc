@@ -60,14 +60,20 @@ std::vector<SentPatch> PatchesAsSent(const SoupFillResult& r,
     }
     return t;
   };
-  // Split repaired faces -> their pieces; soup faces that change.
+  // Split repaired faces -> their pieces; soup faces that change, and the
+  // last patch (in merge order) that splits one of their triangles: a
+  // polygon two holes split is replaced once, by the later patch, whose
+  // replacement may use the earlier patch's vertices but not the reverse.
   std::unordered_map<int32_t, const std::vector<Triangle>*> pieces_of;
   std::unordered_map<int32_t, std::vector<Triangle>> replacement;
-  for (const FilledHole& h : r.fill.patches) {
+  std::unordered_map<int32_t, size_t> replaced_by;
+  for (size_t p = 0; p < r.fill.patches.size(); ++p) {
+    const FilledHole& h = r.fill.patches[p];
     for (size_t k = 0; k < h.patch.split_faces.size(); ++k) {
       const int32_t f = h.patch.split_faces[k];
       pieces_of[f] = &h.patch.pieces[k];
       replacement[r.repair.face_origin[f]];
+      replaced_by[r.repair.face_origin[f]] = p;
     }
   }
   if (!replacement.empty()) {
@@ -84,7 +90,8 @@ std::vector<SentPatch> PatchesAsSent(const SoupFillResult& r,
     }
   }
   std::vector<SentPatch> out;
-  for (const FilledHole& h : r.fill.patches) {
+  for (size_t index = 0; index < r.fill.patches.size(); ++index) {
+    const FilledHole& h = r.fill.patches[index];
     SentPatch& p = out.emplace_back();
     p.hole = h.hole;
     p.first_vertex =
@@ -93,9 +100,10 @@ std::vector<SentPatch> PatchesAsSent(const SoupFillResult& r,
     for (const Triangle& t : h.patch.faces) p.faces.push_back(as_sent(t));
     for (int32_t f : h.patch.split_faces) {
       const int32_t sent = r.repair.face_origin[f];
-      if (std::find(p.replaced_faces.begin(), p.replaced_faces.end(), sent) !=
-          p.replaced_faces.end()) {
-        continue;  // two triangles of one polygon
+      if (replaced_by[sent] != index ||
+          std::find(p.replaced_faces.begin(), p.replaced_faces.end(), sent) !=
+              p.replaced_faces.end()) {
+        continue;  // a later patch replaces it; two triangles of one polygon
       }
       p.replaced_faces.push_back(sent);
       p.replacements.push_back(replacement[sent]);

@@ -407,7 +407,10 @@ Status DelaunayHelperPool::Call(HelperRequest kind, const std::string& what,
     if (config_.memory_limit_bytes > 0) {
       limits.push_back("a helper process may map " +
                        std::to_string(config_.memory_limit_bytes >> 20) +
-                       " MiB (--helper-memory-mb)");
+                       " MiB" +
+                       (config_.memory_limit_setting.empty()
+                            ? std::string()
+                            : " (" + config_.memory_limit_setting + ")"));
     }
     for (size_t i = 0; i < limits.size(); ++i) {
       s.message += (i == 0 ? " (" : "; ") + limits[i];

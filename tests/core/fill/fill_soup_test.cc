@@ -156,6 +156,24 @@ void ExpectPatchesRebuildTheFill(const PolygonSoup& soup,
   const auto patches =
       PatchesAsSent(r, static_cast<int64_t>(soup.vertices.size()));
   EXPECT_EQ(patches.size(), static_cast<size_t>(r.fill.report.filled)) << name;
+  // Every patch triangle, in the fill's ids, is a triangle of the filled
+  // mesh with the same orientation (the repair below would hide a flip).
+  std::vector<Triangle> filled = Canonical(r.fill.mesh.triangles);
+  const auto sent = static_cast<int32_t>(soup.vertices.size());
+  auto in_fill = [&](Triangle t) {
+    for (int32_t& v : t) {
+      v = v >= sent ? static_cast<int32_t>(r.input_vertices) + v - sent
+          : r.repair.vertex_map.empty() ? v
+                                        : r.repair.vertex_map[v];
+    }
+    return std::binary_search(filled.begin(), filled.end(), Canonical({t})[0]);
+  };
+  for (const SentPatch& p : patches) {
+    for (const Triangle& t : p.faces) EXPECT_TRUE(in_fill(t)) << name;
+    for (const auto& pieces : p.replacements) {
+      for (const Triangle& t : pieces) EXPECT_TRUE(in_fill(t)) << name;
+    }
+  }
   MeshData rebuilt;
   RepairReport repair;
   ASSERT_TRUE(RepairMesh(ApplyPatches(soup, patches), &rebuilt, &repair).ok())
@@ -187,6 +205,32 @@ TEST(FillSoupTest, PatchesInTheSentIdsRebuildTheFilledMesh) {
   }
   EXPECT_GT(replaced, 0u);
   ExpectPatchesRebuildTheFill(shark, o, "shark");
+}
+
+// A quad whose two triangles two holes split: the quad is replaced once,
+// by the later patch, with both holes' pieces; the earlier patch names no
+// vertex that comes after its own (a client adds patches in order).
+TEST(FillSoupTest, APolygonTwoHolesSplitIsReplacedOnceByTheLaterPatch) {
+  SoupFillResult r;
+  r.input_vertices = 4;
+  r.input_faces = 2;
+  r.repair.face_origin = {0, 0};  // both triangles come from soup face 0
+  r.fill.mesh.vertices = {{0, 0, 0}, {1, 0, 0},  {1, 1, 0},
+                          {0, 1, 0}, {.5, 0, 0}, {.5, 1, 0}};
+  r.fill.mesh.triangles = {{0, 4, 2}, {0, 2, 5}, {4, 1, 2}, {5, 2, 3}};
+  FilledHole first{0, 4, {{{.5, 0, 0}}, {{4, 1, 9}}, {0}, {}}};
+  first.patch.pieces = {{{0, 4, 2}, {4, 1, 2}}};
+  FilledHole second{1, 5, {{{.5, 1, 0}}, {{5, 3, 8}}, {1}, {}}};
+  second.patch.pieces = {{{0, 2, 5}, {5, 2, 3}}};
+  r.fill.patches = {first, second};
+  const auto patches = PatchesAsSent(r, 4);
+  ASSERT_EQ(patches.size(), 2u);
+  EXPECT_TRUE(patches[0].replaced_faces.empty());
+  ASSERT_EQ(patches[1].replaced_faces, std::vector<int32_t>{0});
+  EXPECT_EQ(Canonical(patches[1].replacements[0]),
+            Canonical({{0, 4, 2}, {4, 1, 2}, {0, 2, 5}, {5, 2, 3}}));
+  EXPECT_EQ(patches[0].first_vertex, 4);
+  EXPECT_EQ(patches[1].first_vertex, 5);
 }
 
 TEST(FillSoupTest, LoopsThroughAVertexFillExactlyThoseLoops) {
