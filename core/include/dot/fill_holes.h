@@ -66,6 +66,9 @@ Status FindHoleLoops(const MeshData& mesh, std::vector<HoleLoop>* loops,
 //  through_vertices  only the loops through one of these vertices (a
 //                cursor or a selection in a modeling tool names loops this
 //                way); a vertex on no loop is refused. Empty: every loop.
+//  through_names how the refusal names through_vertices[k] (the caller's
+//                own ids, before a repair renumbered them); empty: by the
+//                ids themselves.
 // A loop is filled when it passes every criterion given.
 struct HoleSelection {
   int max_edges = 0;
@@ -73,6 +76,7 @@ struct HoleSelection {
   bool skip_longest = false;
   std::vector<int32_t> ids;
   std::vector<int32_t> through_vertices;
+  std::vector<int32_t> through_names;
 };
 
 enum class FillStage { kTriangulate, kRefine, kFair };

@@ -82,10 +82,13 @@ Status Select(const std::vector<HoleLoop>& loops, const HoleSelection& sel,
     for (const HoleLoop& l : loops) {
       for (int32_t v : l.vertices) loops_at[v].push_back(l.id);
     }
-    for (int32_t v : sel.through_vertices) {
+    for (size_t k = 0; k < sel.through_vertices.size(); ++k) {
+      const int32_t v = sel.through_vertices[k];
       auto it = loops_at.find(v);
       if (it == loops_at.end()) {
-        return InvalidArgument("loops_through: vertex " + std::to_string(v) +
+        const int32_t name =
+            k < sel.through_names.size() ? sel.through_names[k] : v;
+        return InvalidArgument("loops_through: vertex " + std::to_string(name) +
                                " is on no border loop of the mesh");
       }
       for (int32_t id : it->second) through[id] = true;

@@ -31,9 +31,9 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   soup = {};  // the repaired mesh replaces it
   if (!out.fill.status.ok()) return out;
   if (!out.repair.vertex_map.empty()) {
-    for (int32_t& v : fill_options.selection.through_vertices) {
-      v = out.repair.vertex_map[v];
-    }
+    HoleSelection& sel = fill_options.selection;
+    sel.through_names = sel.through_vertices;  // refusals name the sent ids
+    for (int32_t& v : sel.through_vertices) v = out.repair.vertex_map[v];
   }
   out.input_vertices = static_cast<int64_t>(mesh.vertices.size());
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());

@@ -284,6 +284,13 @@ TEST(FillSoupTest, LoopsThroughASecondCopyNameItsMergedVertex) {
   const SoupFillResult r = FillSoup(soup, o);
   ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
   EXPECT_EQ(r.fill.report.filled, 1);
+  // A second copy on no border is named as it was sent, not as repaired.
+  o.selection.through_vertices = {n + 1 * 9 + 1};  // grid vertex (1, 1)
+  const Status s = FillSoup(soup, o).fill.status;
+  EXPECT_NE(s.message.find("loops_through: vertex " + std::to_string(n + 10) +
+                           " is on no border loop"),
+            std::string::npos)
+      << s.message;
 }
 
 }  // namespace
