@@ -96,6 +96,20 @@ class WeightProps:
             col.prop(self, m)
 
 
+class TriangulateProps:
+    """What a Triangulate job adds to the weights: the search space, and
+    one panel layout for every operator that triangulates loops."""
+    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
+                               default='AUTO')
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+        layout.prop(self, "protect_edges")
+        layout.prop(self, "search_space")
+
+
 # -- the job ---------------------------------------------------------------
 
 
@@ -389,7 +403,8 @@ class MESH_OT_dot_fill_loops(LoopsOperator, bpy.types.Operator):
 # -- mesh.dot_triangulate_loops ---------------------------------------------
 
 
-class MESH_OT_dot_triangulate_loops(LoopsOperator, bpy.types.Operator):
+class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
+                                    bpy.types.Operator):
     """Fill each selected closed loop (boundary or loose edges) with its
     optimal DOT patch (Delaunay-restricted optimal triangulation of the
     loop alone)"""
@@ -403,15 +418,6 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, bpy.types.Operator):
         name="Protect Edges", default=False,
         description="Split boundary edges that are not Delaunay so more loops "
         "can be filled (the faces beside them get the new vertices)")
-    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
-                               default='AUTO')
-
-    def draw(self, context):
-        layout = self.layout
-        layout.prop(self, "preset")
-        self.draw_weights(layout, self.preset == 'CUSTOM')
-        layout.prop(self, "protect_edges")
-        layout.prop(self, "search_space")
 
     def prepare(self, context):
         selected = self.selected_loops(context)
@@ -626,7 +632,7 @@ def _drop_repeats(pts):
 
 
 class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
-                                    bpy.types.Operator):
+                                    TriangulateProps, bpy.types.Operator):
     """Turn the selected closed curve or polyline into a triangulated
     surface (lofting, sketch-based surfacing)"""
     bl_idname = "mesh.dot_triangulate_curve"
@@ -640,21 +646,11 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
         name="Protect Edges", default=False,
         description="Split curve segments that are not Delaunay so more "
         "curves can be triangulated")
-    search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
-                               default='AUTO')
-
     @classmethod
     def poll(cls, context):
         obj = context.active_object
         return (context.mode == 'OBJECT' and obj is not None
                 and obj.type in ('CURVE', 'MESH'))
-
-    def draw(self, context):
-        layout = self.layout
-        layout.prop(self, "preset")
-        self.draw_weights(layout, self.preset == 'CUSTOM')
-        layout.prop(self, "protect_edges")
-        layout.prop(self, "search_space")
 
     def prepare(self, context):
         obj = context.active_object
