@@ -39,9 +39,7 @@ void BatchReactor::OnReadDone(bool ok) {
       item.job = runner_->Admit(request, context_->deadline(),
                                 "TriangulateBatch", &item.refused);
     } else {  // not admitted: only answered (logged and counted)
-      item.job = std::make_shared<Job>();
-      item.job->rpc = "TriangulateBatch";
-      item.job->arrived = Clock::now();
+      item.job = runner_->Unadmitted("TriangulateBatch", context_->deadline());
       item.refused = {grpc::StatusCode::INVALID_ARGUMENT,
                       "message " + std::to_string(requests_read_) +
                           " of this stream is not a TriangulateRequest (it "

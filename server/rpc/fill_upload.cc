@@ -19,8 +19,7 @@ grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
   // fill itself.
   if (job.cancel) return StoppedStatus(job.stop);
   if (Clock::now() >= job.deadline) {
-    job.Stop(job.deadline_is_limit ? StopReason::kServerBudget
-                                   : StopReason::kClientDeadline);
+    job.StopAtDeadline();
     return {grpc::StatusCode::DEADLINE_EXCEEDED,
             "the mesh did not arrive within the time limit"};
   }

@@ -37,8 +37,7 @@ void SetDeadline(const ServiceOptions& o, uint32_t budget_ms,
 // that deadline.
 void NoteDeadline(Job& job) {
   if (job.result.status.code == StatusCode::kDeadlineExceeded) {
-    job.Stop(job.deadline_is_limit ? StopReason::kServerBudget
-                                   : StopReason::kClientDeadline);
+    job.StopAtDeadline();
   }
 }
 
@@ -89,6 +88,16 @@ std::shared_ptr<Job> JobRunner::AdmitTask(
     grpc::Status* error) {
   auto job = NewJob(rpc, id, budget_ms, client_deadline, error);
   if (error->ok() && !Track(job.get())) *error = ShuttingDown();
+  return job;
+}
+
+std::shared_ptr<Job> JobRunner::Unadmitted(
+    const char* rpc,
+    std::chrono::system_clock::time_point client_deadline) const {
+  auto job = std::make_shared<Job>();
+  job->rpc = rpc;
+  job->arrived = Clock::now();
+  SetDeadline(options_, 0, client_deadline, job.get());
   return job;
 }
 

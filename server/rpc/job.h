@@ -61,6 +61,11 @@ struct Job {
     stop.compare_exchange_strong(none, why);
     cancel = true;
   }
+  // The job's deadline passed: stopped by whoever set it.
+  void StopAtDeadline() {
+    Stop(deadline_is_limit ? StopReason::kServerBudget
+                           : StopReason::kClientDeadline);
+  }
   // The reason a gRPC OnCancel means: the client's deadline if it has
   // passed, else the client's cancel. The server's view of the deadline is
   // the client's timeout counted from when the call arrived, so it falls a
@@ -106,6 +111,11 @@ class JobRunner {
                                  uint32_t budget_ms,
                                  std::chrono::system_clock::time_point deadline,
                                  grpc::Status* error);
+  // A job for a call refused before admission (its message did not parse,
+  // or never came): never started nor tracked, only Answered, so the call
+  // is still logged and counted. Its deadline is set as AdmitTask's would be.
+  std::shared_ptr<Job> Unadmitted(
+      const char* rpc, std::chrono::system_clock::time_point deadline) const;
   // AdmitTask, then the polygon's own checks (shape, size) and the
   // request's memory budget under the server's.
   std::shared_ptr<Job> Admit(const v1::TriangulateRequest& request,

@@ -20,12 +20,6 @@ namespace {
 using testing::LoopbackConfig;
 using testing::StartServer;
 
-PolygonSoup ToSoup(const MeshData& m) {
-  PolygonSoup s{m.vertices, {}};
-  for (const Triangle& t : m.triangles) s.faces.push_back({t[0], t[1], t[2]});
-  return s;
-}
-
 // A torus of nu x nv quads with `holes` holes of 120 faces cut out of it.
 MeshData HoleyTorus(int nu, int nv, int holes) {
   return testing::HoleyTorus(nu, nv, holes, 120);

@@ -168,14 +168,6 @@ struct CutSpec {
 
 }  // namespace
 
-PolygonSoup ToSoup(const MeshData& m) {
-  PolygonSoup soup;
-  soup.vertices = m.vertices;
-  for (const Triangle& t : m.triangles)
-    soup.faces.push_back({t[0], t[1], t[2]});
-  return soup;
-}
-
 std::vector<Case> MakeCases(const Config& config) {
   std::vector<Case> cases;
   const std::vector<std::string> open =

@@ -38,7 +38,6 @@ struct Case {
 };
 
 std::vector<Case> MakeCases(const Config& config);
-PolygonSoup ToSoup(const MeshData& mesh);
 
 // ---- judge.cc
 // Holes as the comparison counts them: loops that share a vertex (a

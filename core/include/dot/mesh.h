@@ -27,6 +27,16 @@ struct PolygonSoup {
   std::vector<std::vector<int32_t>> faces;
 };
 
+// `mesh` as a soup of its triangles (what FillSoup and the wire take).
+inline PolygonSoup ToSoup(const MeshData& mesh) {
+  PolygonSoup soup{mesh.vertices, {}};
+  soup.faces.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) {
+    soup.faces.push_back({t[0], t[1], t[2]});
+  }
+  return soup;
+}
+
 }  // namespace dot
 
 #endif  // DOT_MESH_H_

@@ -119,9 +119,7 @@ TEST(FillLimitsTest, AVertexOnThousandsOfBorderEdgesIsRefusedByName) {
 
 TEST(FillLimitsTest, CancelAndDeadlineStopEveryStage) {
   const MeshData m = HoleyTorus(60, 30, 4);
-  PolygonSoup soup{m.vertices, {}};
-  for (const Triangle& t : m.triangles)
-    soup.faces.push_back({t[0], t[1], t[2]});
+  const PolygonSoup soup = ToSoup(m);
   for (FillStage stage :
        {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
     FillOptions o;

@@ -241,9 +241,7 @@ TEST(FillSoupTest, LoopsThroughAVertexFillExactlyThoseLoops) {
   FillOptions o;
   o.stage = FillStage::kTriangulate;
   o.selection.through_vertices = {loops[1].vertices[3]};
-  PolygonSoup soup{torus.vertices, {}};
-  for (const Triangle& t : torus.triangles)
-    soup.faces.push_back({t[0], t[1], t[2]});
+  const PolygonSoup soup = ToSoup(torus);
   const SoupFillResult r = FillSoup(soup, o);
   ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
   ASSERT_EQ(r.fill.report.holes.size(), 3u);
