@@ -12,7 +12,8 @@ FillHolesReactor::FillHolesReactor(JobRunner* runner,
                                    grpc::CallbackServerContext* context)
     : AnswerStream(runner, context),
       upload_(runner),
-      timers_([this] { OnUploadTimer(); }) {
+      timers_([this] { OnUploadTimer(); }),
+      unadmitted_(runner->Unadmitted("FillHoles", context->deadline())) {
   // A client that opens the stream and sends nothing holds it no longer
   // than the server's time limit (or its own deadline).
   timers_.FirstMessageBy(std::min(
@@ -168,7 +169,7 @@ void FillHolesReactor::OnDone() {
   if (!job_) {
     // The call ended before its first message was accepted: it is still
     // logged, and a stop counted by its reason.
-    job_ = runner_->Unadmitted("FillHoles", context_->deadline());
+    job_ = std::move(unadmitted_);
     job_->log_detail = "input=incomplete";
     if (context_->IsCancelled()) {
       job_->StopForCancel(context_->deadline());

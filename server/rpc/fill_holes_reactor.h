@@ -52,6 +52,9 @@ class FillHolesReactor final
   bool uploading_ = true;     // under mu_: reads go on, the timers may end it
   size_t messages_read_ = 0;  // under mu_: for the timers' message
   UploadTimers timers_;
+  // What is logged if no first message is accepted: made when the call
+  // arrives, so its latency and deadline are the call's own.
+  std::shared_ptr<Job> unadmitted_;
 };
 
 }  // namespace dot::server

@@ -115,7 +115,7 @@ std::vector<HoleEdge>::const_iterator NextAroundFan(
   if (candidates.size() <= 1) {
     return candidates.empty() ? border.end() : candidates[0];
   }
-  if (!*topo) *topo = BuildMeshTopology(mesh);
+  if (!*topo) *topo = BuildMeshAdjacency(mesh);
   const MeshTopology& t = **topo;
   // The other end of in's fan: turn from in.face across sides w -> v.
   int32_t face = in.face, own_end = -1;

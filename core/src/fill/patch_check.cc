@@ -15,16 +15,6 @@
 
 namespace dot {
 
-void Box3::Add(const Vec3& p) {
-  lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-  hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-}
-
-bool Box3::Meets(const Box3& o) const {
-  return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y &&
-         lo.z <= o.hi.z && o.lo.z <= hi.z;
-}
-
 Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
                        std::vector<Triangle> faces, size_t checked,
                        const Control& control, int64_t* pairs) {
@@ -40,10 +30,13 @@ Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
   return CountIntersectingPairs(points, faces, checked, control, pairs);
 }
 
-Status PatchIntersections(const MeshData& mesh, const MeshTopology&,
+Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs) {
-  RunTicker ticker(control, "the intersection check");
+  if (!topology.face_tree) {
+    return MakeStatus(StatusCode::kInternal,
+                      "PatchIntersections needs BuildMeshTopology's face tree");
+  }
   auto point = [&](int32_t id) -> const Vec3& {
     return id < first_new_id ? mesh.vertices[id]
                              : patch.new_vertices[id - first_new_id];
@@ -56,16 +49,12 @@ Status PatchIntersections(const MeshData& mesh, const MeshTopology&,
   for (const auto& pieces : patch.pieces) {
     faces.insert(faces.end(), pieces.begin(), pieces.end());
   }
+  std::vector<int32_t> near;
+  topology.face_tree->FacesMeeting(box, &near);
   const std::unordered_set<int32_t> split(patch.split_faces.begin(),
                                           patch.split_faces.end());
-  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-    if (!ticker.Tick()) return ticker.status();
-    const Triangle& t = mesh.triangles[f];
-    Box3 b;
-    for (int32_t v : t) b.Add(mesh.vertices[v]);
-    if (b.Meets(box) && !split.count(static_cast<int32_t>(f))) {
-      faces.push_back(t);
-    }
+  for (int32_t f : near) {
+    if (!split.count(f)) faces.push_back(mesh.triangles[f]);
   }
   return CountPairsAmong(point, std::move(faces), patch.faces.size(), control,
                          pairs);

@@ -12,6 +12,7 @@
 #include "dot/geometry.h"
 #include "dot/problem.h"
 #include "dot/status.h"
+#include "mesh/face_tree.h"
 
 namespace dot {
 
@@ -22,14 +23,6 @@ namespace dot {
 Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
                        std::vector<Triangle> faces, size_t checked,
                        const Control& control, int64_t* pairs);
-
-// Axis-aligned box of some points.
-struct Box3 {
-  Vec3 lo{1e308, 1e308, 1e308};
-  Vec3 hi{-1e308, -1e308, -1e308};
-  void Add(const Vec3& p);
-  bool Meets(const Box3& o) const;
-};
 
 }  // namespace dot
 

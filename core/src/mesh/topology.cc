@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "mesh/topology.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <memory>
 
 namespace dot {
 
-std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh) {
-  auto topo = std::make_shared<MeshTopology>();
+namespace {
+
+void BuildRows(const MeshData& mesh, MeshTopology* topo) {
   const size_t nv = mesh.vertices.size();
   topo->face_begin.assign(nv + 1, 0);
   for (const Triangle& t : mesh.triangles) {
@@ -38,6 +41,21 @@ std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh) {
     topo->ring.insert(topo->ring.end(), around.begin(), around.end());
     topo->ring_begin[v + 1] = static_cast<int32_t>(topo->ring.size());
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const MeshTopology> BuildMeshAdjacency(const MeshData& mesh) {
+  auto topo = std::make_shared<MeshTopology>();
+  BuildRows(mesh, topo.get());
+  return topo;
+}
+
+std::shared_ptr<const MeshTopology> BuildMeshTopology(const MeshData& mesh) {
+  auto topo = std::make_shared<MeshTopology>();
+  tbb::parallel_invoke(
+      [&] { BuildRows(mesh, topo.get()); },
+      [&] { topo->face_tree = std::make_shared<const FaceTree>(mesh); });
   return topo;
 }
 
