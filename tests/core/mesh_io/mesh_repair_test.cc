@@ -292,5 +292,30 @@ TEST(MeshFilesTest, OffProblemsAreNamedByLineAndReason) {
   std::remove(path.c_str());
 }
 
+TEST(MeshFilesTest, LinesAreCountedPastTheReadersBufferOfOneMebibyte) {
+  // The reader buffers 1 MiB at a time and counts positions itself: a
+  // problem several buffers in is still named by its own line.
+  const std::string path = Temp("long.off");
+  constexpr int kVertices = 200000;  // ~4 MiB of text
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "OFF\n" << kVertices << " 1 0\n";
+    for (int v = 0; v < kVertices; ++v) {
+      if (v == 150001) {
+        out << "0.25 oops 1.5\n";
+      } else {
+        out << "0.123456789 " << v << ".987654321 -7.5\n";
+      }
+    }
+    out << "3 0 1 2\n";
+  }
+  PolygonSoup soup;
+  const Status s = ReadPolygonSoupFile(path, &soup);
+  EXPECT_NE(s.message.find("line 150004: vertex 150001 of 200000: 'oops'"),
+            std::string::npos)
+      << s.message;
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace dot
