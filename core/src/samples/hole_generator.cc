@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // GrowHole in steps: index the mesh's topology, pick an interior start
 // triangle, grow the hole one triangle at a time while it stays a disk, then
-// walk its boundary and take normals from the triangles that remain.
+// walk its boundary and take normals from the triangles that remain. The
+// index is built once per mesh and the growth's marks are undone after each
+// hole, so CutHoles costs the mesh once plus each hole's own size.
 #include "dot/hole_generator.h"
 
+#include <algorithm>
 #include <random>
 #include <string>
 
 #include "mesh/edge_index.h"
 #include "mesh/normals.h"
+#include "mesh/topology.h"
 
 namespace dot {
 namespace {
@@ -21,7 +25,7 @@ struct SideAdjacency {
   std::vector<bool> on_border;
 };
 
-SideAdjacency BuildTopology(const MeshData& mesh) {
+SideAdjacency BuildSides(const MeshData& mesh) {
   SideAdjacency topo;
   topo.across.assign(3 * mesh.triangles.size(), -1);
   topo.vertex_degree.assign(mesh.vertices.size(), 0);
@@ -41,22 +45,40 @@ SideAdjacency BuildTopology(const MeshData& mesh) {
   return topo;
 }
 
-// The hole while it grows.
+// The hole while it grows. The marks are mesh-sized and allocated once;
+// Clear undoes only what the last hole touched.
 struct Growth {
   const MeshData& mesh;
   const SideAdjacency& topo;
+  const MeshTopology& faces;  // for the boundary normals
   std::vector<bool> in_hole;
   std::vector<int32_t> hole_degree;  // hole triangles per vertex
   std::vector<int32_t> frontier;     // candidates: neighbours of the hole
+  std::vector<int32_t> added;        // the hole's triangles, in order
+  std::vector<int32_t> next;         // boundary links (BoundaryLinks)
   int grown = 0;
 
-  Growth(const MeshData& m, const SideAdjacency& t)
+  Growth(const MeshData& m, const SideAdjacency& t, const MeshTopology& f)
       : mesh(m),
         topo(t),
+        faces(f),
         in_hole(m.triangles.size(), false),
-        hole_degree(m.vertices.size(), 0) {}
+        hole_degree(m.vertices.size(), 0),
+        next(m.vertices.size(), -1) {}
 
   bool InHole(int32_t t) const { return t >= 0 && in_hole[t]; }
+  void Clear() {
+    for (int32_t t : added) {
+      in_hole[t] = false;
+      for (int32_t v : mesh.triangles[t]) {
+        hole_degree[v] = 0;
+        next[v] = -1;
+      }
+    }
+    added.clear();
+    frontier.clear();
+    grown = 0;
+  }
 };
 
 bool TouchesBorder(const Growth& g, int32_t t) {
@@ -95,6 +117,7 @@ bool KeepsDisk(const Growth& g, int32_t t) {
 
 void Add(Growth* g, int32_t t) {
   g->in_hole[t] = true;
+  g->added.push_back(t);
   ++g->grown;
   for (int32_t v : g->mesh.triangles[t]) ++g->hole_degree[v];
   for (int k = 0; k < 3; ++k) {
@@ -127,16 +150,14 @@ void GrowTo(int triangles, std::mt19937_64* rng, Growth* g) {
 
 // The boundary as next[a] = b for each directed side a -> b of a hole
 // triangle whose neighbour stays; `first` is one of its vertices.
-Status BoundaryLinks(const Growth& g, std::vector<int32_t>* next,
-                     int32_t* first, int* edges) {
-  next->assign(g.mesh.vertices.size(), -1);
+Status BoundaryLinks(Growth* g, int32_t* first, int* edges) {
+  std::vector<int32_t>* next = &g->next;
   *first = -1;
   *edges = 0;
-  for (size_t t = 0; t < g.mesh.triangles.size(); ++t) {
-    if (!g.in_hole[t]) continue;
-    const Triangle& tri = g.mesh.triangles[t];
+  for (int32_t t : g->added) {
+    const Triangle& tri = g->mesh.triangles[t];
     for (int k = 0; k < 3; ++k) {
-      if (g.InHole(g.topo.across[3 * t + k])) continue;
+      if (g->InHole(g->topo.across[3 * t + k])) continue;
       const int32_t a = tri[k], b = tri[(k + 1) % 3];
       if ((*next)[a] != -1) {
         return MakeStatus(StatusCode::kInternal,
@@ -151,10 +172,10 @@ Status BoundaryLinks(const Growth& g, std::vector<int32_t>* next,
 }
 
 // Follows the boundary links once around from `first`.
-Status WalkBoundary(const Growth& g, const std::vector<int32_t>& next,
-                    int32_t first, int edges, PolygonData* boundary) {
+Status WalkBoundary(const Growth& g, int32_t first, int edges,
+                    PolygonData* boundary) {
+  const std::vector<int32_t>& next = g.next;
   // Normals of the triangles that remain.
-  const auto topology = BuildMeshTopology(g.mesh);
   auto position = [&](int32_t id) -> const Vec3& {
     return g.mesh.vertices[id];
   };
@@ -162,8 +183,8 @@ Status WalkBoundary(const Growth& g, const std::vector<int32_t>& next,
   int32_t v = first;
   do {
     boundary->vertices.push_back(g.mesh.vertices[v]);
-    boundary->normals.push_back(Normalized(
-        AreaWeightedNormal(g.mesh, *topology, v, position, removed)));
+    boundary->normals.push_back(
+        Normalized(AreaWeightedNormal(g.mesh, g.faces, v, position, removed)));
     v = next[v];
   } while (v != first && v != -1 &&
            static_cast<int>(boundary->vertices.size()) <= edges);
@@ -174,39 +195,44 @@ Status WalkBoundary(const Growth& g, const std::vector<int32_t>& next,
   return OkStatus();
 }
 
-}  // namespace
-
-Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
-  const auto nt = static_cast<int32_t>(mesh.triangles.size());
+// One hole in a mesh indexed once; `g` is cleared first.
+Status GrowOne(int triangles, uint64_t seed, Growth* g, Hole* out) {
+  g->Clear();
+  const auto nt = static_cast<int32_t>(g->mesh.triangles.size());
   if (nt == 0 || triangles < 1 || triangles >= nt) {
     return InvalidArgument("hole size must be between 1 and the mesh's " +
                            std::to_string(nt) + " triangles");
   }
-  const SideAdjacency topo = BuildTopology(mesh);
-  Growth growth(mesh, topo);
   std::mt19937_64 rng(seed);
-  const int32_t start = PickStart(growth, &rng);
+  const int32_t start = PickStart(*g, &rng);
   if (start < 0) {
     return InvalidArgument("found no interior triangle to start a hole from");
   }
-  Add(&growth, start);
-  GrowTo(triangles, &rng, &growth);
-  if (growth.grown < triangles) {
+  Add(g, start);
+  GrowTo(triangles, &rng, g);
+  if (g->grown < triangles) {
     return InvalidArgument("the hole stopped growing at " +
-                           std::to_string(growth.grown) + " of " +
+                           std::to_string(g->grown) + " of " +
                            std::to_string(triangles) + " triangles");
   }
-  std::vector<int32_t> next;
   int32_t first = -1;
   int edges = 0;
-  Status s = BoundaryLinks(growth, &next, &first, &edges);
+  Status s = BoundaryLinks(g, &first, &edges);
   if (!s.ok()) return s;
   *out = {};
-  out->triangles = growth.grown;
-  for (int32_t t = 0; t < nt; ++t) {
-    if (growth.in_hole[t]) out->removed.push_back(t);
-  }
-  return WalkBoundary(growth, next, first, edges, &out->boundary);
+  out->triangles = g->grown;
+  out->removed = g->added;
+  std::sort(out->removed.begin(), out->removed.end());
+  return WalkBoundary(*g, first, edges, &out->boundary);
+}
+
+}  // namespace
+
+Status GrowHole(const MeshData& mesh, int triangles, uint64_t seed, Hole* out) {
+  const SideAdjacency sides = BuildSides(mesh);
+  const auto faces = BuildMeshAdjacency(mesh);
+  Growth growth(mesh, sides, *faces);
+  return GrowOne(triangles, seed, &growth, out);
 }
 
 MeshData SubMesh(const MeshData& mesh, const std::vector<bool>& keep) {
@@ -231,10 +257,13 @@ Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
                 MeshData* holey, MeshData* removed) {
   std::vector<bool> in_hole(mesh.triangles.size(), false);
   std::vector<bool> near_hole(mesh.vertices.size(), false);
+  const SideAdjacency sides = BuildSides(mesh);
+  const auto faces = BuildMeshAdjacency(mesh);
+  Growth growth(mesh, sides, *faces);
   int cut = 0;
   for (uint64_t attempt = 0; cut < count && attempt < 50u * count; ++attempt) {
     Hole hole;
-    if (!GrowHole(mesh, triangles, seed * 1000003 + attempt, &hole).ok()) {
+    if (!GrowOne(triangles, seed * 1000003 + attempt, &growth, &hole).ok()) {
       continue;
     }
     bool apart = true;
