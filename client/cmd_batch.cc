@@ -61,8 +61,8 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       ->required();
   cmd->add_option("-o,--output", flags->output,
                   "directory for the meshes (default: beside each input)");
-  cmd->add_option("--format", flags->format, "obj, ply or off")
-      ->check(CLI::IsMember({"obj", "ply", "off"}))
+  cmd->add_option("--format", flags->format, "obj, ply, off or stl")
+      ->check(CLI::IsMember({"obj", "ply", "off", "stl"}))
       ->capture_default_str();
   cmd->add_option("--input-format", flags->input_format,
                   "xyz (plain text, the default) or obj: how to read a "

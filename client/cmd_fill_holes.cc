@@ -67,7 +67,7 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                   "(with --input-format)")
       ->required();
   cmd->add_option("-o,--output", f->output,
-                  "filled mesh (.off, .obj, .ply; - for stdout as "
+                  "filled mesh (.off, .obj, .ply, .stl; - for stdout as "
                   "--output-format); default: NAME.filled.ply beside the "
                   "input");
   cmd->add_option("--input-format", f->stdin_format,
@@ -76,7 +76,7 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_option("--output-format", f->output_format,
                   "format of the filled mesh on stdout, or of an -o file "
                   "without an extension (default: off on stdout)")
-      ->check(CLI::IsMember({"off", "obj", "ply"}));
+      ->check(CLI::IsMember({"off", "obj", "ply", "stl"}));
   cmd->add_option("--stage", f->stage,
                   "triangulate (the DOT patch), refine (+ Liepa refinement) "
                   "or fair (+ fairing: the finished surface)")
@@ -132,7 +132,8 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
       ->group("Refine and fair");
   cmd->add_flag("--no-repair", f->no_repair,
                 "use the mesh as it is (no vertex merging, orientation, ...)");
-  cmd->add_flag("--ascii", f->ascii, "write PLY as ASCII (default binary)");
+  cmd->add_flag("--ascii", f->ascii,
+                "write PLY and STL as ASCII (default binary)");
   cmd->add_option("--time-budget-ms", f->time_budget_ms,
                   "compute time allowed (0: the server's limit)");
   cmd->add_flag("--json", f->json, "the report as one JSON object on stdout");

@@ -56,9 +56,9 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
                   "ending in /); - for stdout; format from the extension: "
                   ".obj, .ply, .off");
   cmd->add_option("--format", flags->format,
-                  "obj, ply or off: for stdout, directories and -o names "
+                  "obj, ply, off or stl: for stdout, directories and -o names "
                   "without a mesh extension (default obj)")
-      ->check(CLI::IsMember({"obj", "ply", "off"}));
+      ->check(CLI::IsMember({"obj", "ply", "off", "stl"}));
   cmd->add_option("--input-format", flags->input_format,
                   "xyz (plain text, the default) or obj: how to read a "
                   "polygon from stdin (- or /dev/stdin); files go by their "

@@ -27,7 +27,7 @@ std::string LowerExtension(const std::string& path) {
 }
 
 bool IsMeshFormat(const std::string& f) {
-  return f == "obj" || f == "ply" || f == "off";
+  return f == "obj" || f == "ply" || f == "off" || f == "stl";
 }
 
 std::string CannotWrite(const std::string& path, int error) {
@@ -75,7 +75,7 @@ OutputTarget ResolveOutput(const std::string& input, const std::string& output,
       t.format = format;
     } else {
       t.error = "cannot tell the mesh format of '" + output +
-                "'; name it .obj, .ply or .off, or give " +
+                "'; name it .obj, .ply, .off or .stl, or give " +
                 defaults.format_flag;
     }
   }

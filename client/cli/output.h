@@ -16,7 +16,7 @@ namespace dot::client {
 struct OutputTarget {
   bool to_stdout = false;
   std::string path;    // the file (to_stdout: empty)
-  std::string format;  // obj, ply or off
+  std::string format;  // obj, ply, off or stl
   std::string error;   // why the mesh could not be written there; "" if fine
   // As reports show it: the path, or "-".
   std::string Name() const { return to_stdout ? "-" : path; }

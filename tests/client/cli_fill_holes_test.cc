@@ -63,6 +63,19 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   std::vector<HoleLoop> loops;
   ASSERT_TRUE(FindHoleLoops(remote, &loops).ok());
   EXPECT_TRUE(loops.empty());
+  // STL, for 3D printing: the same faces; read back (vertices merged by
+  // position) it is closed too.
+  r = Dotctl("fill-holes --local " + Path("holey.off") + " -q -o " +
+             Path("local.stl"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  PolygonSoup stl;
+  ASSERT_TRUE(ReadPolygonSoupFile(Path("local.stl"), &stl).ok());
+  EXPECT_EQ(stl.faces.size(), local.triangles.size());
+  MeshData repaired;
+  RepairReport repair;
+  ASSERT_TRUE(RepairMesh(stl, &repaired, &repair).ok());
+  ASSERT_TRUE(FindHoleLoops(repaired, &loops).ok());
+  EXPECT_TRUE(loops.empty());
 }
 
 TEST_F(FillHolesCliTest, SharesTriangulatesOutputNamingAndJsonEnvelope) {

@@ -17,7 +17,9 @@
 // note saying so is added to `notes` when given.
 // Mesh files (by extension): written as .obj, .off or .ply (binary little
 // endian float64 by default, ASCII on request), every coordinate exactly
-// (17 significant digits in text); read with CGAL's polygon-soup readers
+// (17 significant digits in text), or .stl (binary by default: float32, so
+// coordinates are rounded to single precision; ASCII writes every digit,
+// though STL readers, CGAL's included, read single precision); read with CGAL's polygon-soup readers
 // from .off, .obj, .ply (ASCII or binary, either byte order) and .stl
 // (ASCII or binary), polygons triangulated.
 #ifndef DOT_IO_H_
@@ -45,7 +47,7 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out,
 Status WritePolygonText(const std::string& path, const PolygonData& polygon);
 Status WritePolygonText(std::ostream& out, const PolygonData& polygon);
 
-// Format from the extension: .obj, .ply or .off.
+// Format from the extension: .obj, .ply, .off or .stl.
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,
                      bool ascii = false);
 Status WriteMesh(std::ostream& out, const std::string& format,

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+
+#include "mesh/normals.h"
 
 namespace dot {
 namespace {
@@ -280,6 +283,46 @@ void WriteBinaryPly(std::ostream& out, const MeshData& mesh) {
   }
 }
 
+// STL, what 3D printing takes: a soup of facets, each with its unit
+// normal. Binary STL stores float32 (coordinates are rounded to single
+// precision); ASCII STL is written with every digit.
+Vec3 FacetNormal(const MeshData& mesh, const Triangle& t) {
+  return Normalized(
+      FaceCross(t, [&](int32_t v) -> const Vec3& { return mesh.vertices[v]; }));
+}
+
+void WriteBinaryStl(std::ostream& out, const MeshData& mesh) {
+  std::string header = "binary STL written by dot";
+  header.resize(80, ' ');
+  out.write(header.data(), 80);
+  PutLittleEndian(out, static_cast<uint32_t>(mesh.triangles.size()));
+  auto put = [&out](const Vec3& p) {
+    PutLittleEndian(out, static_cast<float>(p.x));
+    PutLittleEndian(out, static_cast<float>(p.y));
+    PutLittleEndian(out, static_cast<float>(p.z));
+  };
+  for (const Triangle& t : mesh.triangles) {
+    put(FacetNormal(mesh, t));
+    for (int32_t v : t) put(mesh.vertices[v]);
+    PutLittleEndian<uint16_t>(out, 0);  // attribute byte count
+  }
+}
+
+void WriteAsciiStl(std::ostream& out, const MeshData& mesh) {
+  out << "solid dot\n";
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 n = FacetNormal(mesh, t);
+    out << "facet normal " << n.x << ' ' << n.y << ' ' << n.z
+        << "\n outer loop\n";
+    for (int32_t v : t) {
+      const Vec3& p = mesh.vertices[v];
+      out << "  vertex " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    }
+    out << " endloop\nendfacet\n";
+  }
+  out << "endsolid dot\n";
+}
+
 }  // namespace
 
 Status WriteMesh(std::ostream& out, const std::string& format,
@@ -296,6 +339,17 @@ Status WriteMesh(std::ostream& out, const std::string& format,
   };
   if (format == "ply" && !ascii) {
     WriteBinaryPly(out, mesh);
+    return written();
+  }
+  if (format == "stl") {
+    if (!ascii && mesh.triangles.size() > UINT32_MAX) {
+      return InvalidArgument("binary STL holds at most 2^32 - 1 triangles");
+    }
+    if (ascii) {
+      WriteAsciiStl(out, mesh);
+    } else {
+      WriteBinaryStl(out, mesh);
+    }
     return written();
   }
   if (format == "obj") {
@@ -321,7 +375,7 @@ Status WriteMesh(std::ostream& out, const std::string& format,
       out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
   } else {
     return InvalidArgument("unknown mesh format '" + format +
-                           "'; use obj, ply or off");
+                           "'; use obj, ply, off or stl");
   }
   return written();
 }
@@ -329,9 +383,9 @@ Status WriteMesh(std::ostream& out, const std::string& format,
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,
                      bool ascii) {
   const std::string ext = Extension(path);
-  if (ext != "obj" && ext != "ply" && ext != "off") {
+  if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl") {
     return InvalidArgument("cannot tell the mesh format of '" + path +
-                           "'; name it .obj, .ply or .off");
+                           "'; name it .obj, .ply, .off or .stl");
   }
   std::ofstream out(path, std::ios::binary);
   if (!out) {

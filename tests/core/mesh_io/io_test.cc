@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "dot/dot.h"
 
@@ -136,8 +138,55 @@ TEST(IoTest, MeshRoundTripsThroughEveryFormat) {
   std::ostringstream ply;
   ASSERT_TRUE(WriteMesh(ply, "ply", mesh).ok());
   EXPECT_NE(ply.str().find("element face 58"), std::string::npos);
-  EXPECT_EQ(WriteMeshFile(TempPath("mesh.stl"), mesh).code,
+  EXPECT_EQ(WriteMeshFile(TempPath("mesh.xyz"), mesh).code,
             StatusCode::kInvalidArgument);
+}
+
+TEST(IoTest, StlIsWrittenBinaryInFloatsOrAsciiWithEveryDigit) {
+  Problem prob;
+  prob.vertices = MakeCurve(Curve::kMonkey, 60);
+  const Result r = Triangulate(prob);
+  ASSERT_TRUE(r.status.ok());
+  const MeshData mesh{r.vertices, r.triangles};
+  for (const bool ascii : {false, true}) {
+    const std::string path = TempPath(ascii ? "ascii.stl" : "binary.stl");
+    {
+      std::ofstream out(path, std::ios::binary);
+      ASSERT_TRUE(WriteMesh(out, "stl", mesh, ascii).ok());
+    }
+    PolygonSoup back;
+    ASSERT_TRUE(ReadPolygonSoupFile(path, &back).ok()) << path;
+    ASSERT_EQ(back.faces.size(), mesh.triangles.size()) << path;
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+      ASSERT_EQ(back.faces[f].size(), 3u);
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = mesh.vertices[mesh.triangles[f][k]];
+        // STL is single precision: readers (CGAL's too) round even
+        // ASCII values to float, so each coordinate is within half a
+        // float ulp (2^-24 relative).
+        const Vec3& q = back.vertices[back.faces[f][k]];
+        for (const auto& [got, sent] :
+             {std::pair{q.x, p.x}, std::pair{q.y, p.y}, std::pair{q.z, p.z}}) {
+          EXPECT_LE(std::abs(got - sent), std::abs(sent) * 0x1p-24)
+              << path << " face " << f;
+        }
+      }
+    }
+    std::remove(path.c_str());
+  }
+  // Each facet's normal is its unit normal by the right-hand rule.
+  const MeshData one{{{0, 0, 0}, {2, 0, 0}, {0, 3, 0}}, {{0, 1, 2}}};
+  std::ostringstream text;
+  ASSERT_TRUE(WriteMesh(text, "stl", one, /*ascii=*/true).ok());
+  EXPECT_NE(text.str().find("facet normal 0 0 1"), std::string::npos)
+      << text.str();
+  // ASCII keeps every digit in the file, for readers that take doubles.
+  const MeshData fine{{{0.1, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}};
+  std::ostringstream digits;
+  ASSERT_TRUE(WriteMesh(digits, "stl", fine, /*ascii=*/true).ok());
+  EXPECT_NE(digits.str().find("vertex 0.10000000000000001 0 0"),
+            std::string::npos)
+      << digits.str();
 }
 
 TEST(IoTest, PolygonFileRoundTrip) {
