@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "commands.h"
 #include "exit_codes.h"
@@ -35,7 +36,7 @@ struct FillFlags {
   bool absolute_weights = false;
   double density = 0;
   int fairing_continuity = 1;
-  bool no_repair = false, ascii = false;
+  bool no_repair = false, ascii = false, dry_run = false;
   bool json = false, local = false;
   uint32_t time_budget_ms = 0;
 
@@ -57,6 +58,7 @@ struct FillFlags {
     o.set_fairing_continuity(fairing_continuity);
     o.set_no_repair(no_repair);
     o.set_time_budget_ms(time_budget_ms);
+    o.set_dry_run(dry_run);
     return o;
   }
 };
@@ -132,6 +134,9 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
       ->group("Refine and fair");
   cmd->add_flag("--no-repair", f->no_repair,
                 "use the mesh as it is (no vertex merging, orientation, ...)");
+  cmd->add_flag("--dry-run", f->dry_run,
+                "list the holes (size, place, selected or why not) and fill "
+                "none; nothing is written");
   cmd->add_flag("--ascii", f->ascii,
                 "write PLY and STL as ASCII (default binary)");
   cmd->add_option("--time-budget-ms", f->time_budget_ms,
@@ -199,6 +204,31 @@ void PrintTable(const v1::FillReport& r) {
   }
 }
 
+// --dry-run: each loop, its size and place, and whether it is selected.
+void PrintListing(const std::string& input, const v1::FillReport& r) {
+  std::cout << " hole edges      diameter     perimeter  centroid"
+               "                                  status   note\n";
+  for (const v1::HoleReport& h : r.holes()) {
+    std::ostringstream centroid;
+    centroid.precision(6);
+    for (int k = 0; k < h.centroid_size(); ++k) {
+      centroid << (k ? " " : "") << h.centroid(k);
+    }
+    std::cout << std::setw(5) << h.id() << std::setw(6) << h.boundary_vertices()
+              << std::setprecision(6) << std::setw(14) << h.diameter()
+              << std::setw(14) << h.perimeter() << "  " << std::left
+              << std::setw(40) << centroid.str() << std::setw(9)
+              << HoleStatusName(wire::HoleStatusFromWire(h.status()))
+              << std::right << (h.pinched() ? "pinched loop; " : "")
+              << h.reason() << "\n";
+  }
+  std::cout << input << ": " << r.loops() << " holes, " << r.listed()
+            << " would be filled"
+            << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
+                            : "")
+            << " (dry run: nothing filled or written)\n";
+}
+
 }  // namespace
 
 void AddFillHolesCommand(CLI::App& app, Context* ctx) {
@@ -235,8 +265,10 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
         f.input, f.output, f.output_format, /*into_directory=*/false,
         {"filled", "ply", "off", "--output-format"});
     AtomicOutput sink;
-    std::string output_error = target.error;
-    if (output_error.empty()) output_error = sink.Open(target.Name());
+    std::string output_error = f.dry_run ? "" : target.error;
+    if (output_error.empty() && !f.dry_run) {
+      output_error = sink.Open(target.Name());
+    }
     if (!output_error.empty()) {
       report(kOutcomeOutputError, kExitUsage, output_error, false);
       return;
@@ -273,6 +305,14 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
              std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
                  o.status.error_message(),
              true);
+      return;
+    }
+    if (f.dry_run) {
+      if (f.json) {
+        report(kOutcomeOk, kExitOk, "", true);
+      } else if (!ctx->quiet) {
+        PrintListing(f.input, o.report);
+      }
       return;
     }
     Status w = WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);

@@ -110,7 +110,9 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   const size_t vertices =
       out.report.input_vertices() + out.report.added_vertices();
   const size_t faces = out.report.input_faces() + out.report.added_faces();
-  if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH) {
+  // A dry run's answer is the report alone.
+  if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH &&
+      !options.dry_run()) {
     assembled = assembler.Finish(vertices, faces, {}, &out.mesh);
   }
   out.patches = std::move(patches.patches());

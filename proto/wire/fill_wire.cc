@@ -37,6 +37,7 @@ Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
     o->fairing_continuity = wire.fairing_continuity();
   }
   o->repair = !wire.no_repair();
+  o->dry_run = wire.dry_run();
   o->selection.through_vertices.reserve(wire.loops_through_size());
   for (uint32_t v : wire.loops_through()) {
     o->selection.through_vertices.push_back(
@@ -66,6 +67,8 @@ v1::HoleStatus HoleStatusToWire(HoleStatus status) {
       return v1::HOLE_STATUS_NO_TRIANGULATION;
     case HoleStatus::kFailed:
       return v1::HOLE_STATUS_FAILED;
+    case HoleStatus::kListed:
+      return v1::HOLE_STATUS_LISTED;
   }
   return v1::HOLE_STATUS_UNSPECIFIED;
 }
@@ -112,11 +115,17 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
     w->set_refine_ms(h.refine_ms);
     w->set_fair_ms(h.fair_ms);
     w->set_check_ms(h.check_ms);
+    w->set_diameter(h.diameter);
+    w->set_perimeter(h.perimeter);
+    for (double c : {h.centroid.x, h.centroid.y, h.centroid.z}) {
+      w->add_centroid(c);
+    }
   }
   out->set_loops(r.loops);
   out->set_filled(r.filled);
   out->set_skipped(r.skipped);
   out->set_unfilled(r.unfilled);
+  out->set_listed(r.listed);
   out->set_added_vertices(r.added_vertices);
   out->set_added_faces(r.added_faces);
   out->set_closed(r.closed);
@@ -135,7 +144,7 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
 
 HoleStatus HoleStatusFromWire(v1::HoleStatus status) {
   for (HoleStatus s : {HoleStatus::kFilled, HoleStatus::kSkipped,
-                       HoleStatus::kNoTriangulation}) {
+                       HoleStatus::kNoTriangulation, HoleStatus::kListed}) {
     if (HoleStatusToWire(s) == status) return s;
   }
   return HoleStatus::kFailed;

@@ -19,7 +19,9 @@ Status FillHolesCall::Run(PolygonSoup soup, const Control& control,
          " received_faces=" + std::to_string(soup.faces.size());
   const auto sent_vertices = static_cast<int64_t>(soup.vertices.size());
   result_ = FillSoup(std::move(soup), options_, control, on_hole);
-  if (result_.fill.status.ok() && answer_ == v1::FILL_ANSWER_PATCHES) {
+  if (options_.dry_run) {
+    result_.fill.mesh = {};  // the report is the answer
+  } else if (result_.fill.status.ok() && answer_ == v1::FILL_ANSWER_PATCHES) {
     patches_ = PatchesAsSent(result_, sent_vertices);
     result_.fill.mesh = {};  // the patches are the answer
   }

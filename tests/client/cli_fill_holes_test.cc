@@ -78,6 +78,28 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   EXPECT_TRUE(loops.empty());
 }
 
+TEST_F(FillHolesCliTest, DryRunListsTheHolesThroughTheServerAndLocally) {
+  auto r = Dotctl("generate holes " + Path("torus.off") +
+                  " -k 3 -t 40 --seed 5 -o " + Path("dry.off"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const std::string& fill :
+       {flag_ + "fill-holes ", std::string("fill-holes --local ")}) {
+    r = Dotctl(fill + Path("dry.off") + " --dry-run");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("3 holes, 3 would be filled (dry run"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("listed"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(Path("dry.filled.ply")))
+        << "a dry run writes nothing";
+    r = Dotctl(fill + Path("dry.off") + " --dry-run --json --holes 1");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"listed\":1"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"perimeter\":"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"output\":\"\""), std::string::npos) << r.out;
+  }
+}
+
 TEST_F(FillHolesCliTest, SharesTriangulatesOutputNamingAndJsonEnvelope) {
   // A soup with every vertex twice: the repair has something to say.
   const MeshData torus = testing::BumpyTorus(20, 10);

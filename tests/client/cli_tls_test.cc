@@ -398,7 +398,7 @@ TEST_F(CliTest, OutputCheckedBeforeTheWorkAndJsonForEveryOutcome) {
       << split.err;
   CliRun r;
   // A bad extension, or one --format contradicts: no work, no "ok".
-  r = Dotctl(flag_ + "triangulate " + m + " -o " + Path("x.stl"));
+  r = Dotctl(flag_ + "triangulate " + m + " -o " + Path("x.stla"));
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_TRUE(Has(r.out, "cannot tell the mesh format")) << r.out;
   EXPECT_FALSE(Has(r.out, "ok:")) << r.out;

@@ -285,6 +285,10 @@ TEST(GoldenStreamTest, FillHolesPatchesReassembleAndRebuildTheLocalMesh) {
   EXPECT_EQ(report.holes(0).status(), v1::HOLE_STATUS_SKIPPED);
   EXPECT_EQ(report.holes(1).status(), v1::HOLE_STATUS_FILLED);
   EXPECT_EQ(report.holes(1).escalation(), v1::ESCALATION_PROTECTED_EDGES);
+  // The loop's size and place (HoleReport fields 22-24).
+  EXPECT_EQ(report.holes(1).centroid_size(), 3);
+  EXPECT_GT(report.holes(1).perimeter(), 0);
+  EXPECT_GT(report.holes(0).diameter(), report.holes(1).diameter());
 
   const auto& want = Field(expected, "patches").list_value();
   const std::vector<SentPatch>& got = reader.patches();

@@ -74,6 +74,25 @@ def test_hole_selection(client):
     assert "there is no hole 99: the mesh has 2 holes" in e.value.message
 
 
+def test_list_holes_reports_sizes_and_fills_nothing(client):
+    v, f = grid_with_hole(20)  # a 4 x 4 square hole, and the rim
+    report = client.list_holes(v, f, max_hole_edges=20)
+    assert (report.loops, report.listed, report.skipped) == (2, 1, 1)
+    assert report.filled == 0 and report.added_faces == 0
+    hole, rim = sorted(report.holes, key=lambda h: h.boundary_vertices)
+    assert (hole.status, rim.status) == ("listed", "skipped")
+    assert "more than max_edges 20" in rim.reason
+    assert hole.perimeter == pytest.approx(16)
+    assert hole.diameter == pytest.approx(4 * np.sqrt(2))
+    assert hole.centroid == pytest.approx((10, 10, 0))
+    assert rim.perimeter == pytest.approx(76)
+    assert rim.centroid == pytest.approx((9.5, 9.5, 0))
+    # A fill reports the same sizes.
+    filled = client.fill_holes(v, f, max_hole_edges=20)
+    assert [h.perimeter for h in filled.report.holes] == \
+        [h.perimeter for h in report.holes]
+
+
 # Three square holes in a 16 x 16 grid, and the rim.
 HOLES = [(2, 4, 2, 4), (2, 4, 10, 13), (9, 13, 5, 8)]
 
@@ -145,7 +164,8 @@ def test_hole_status_and_escalation_names(client):
                      "HOLE_STATUS_FILLED": "filled",
                      "HOLE_STATUS_SKIPPED": "skipped",
                      "HOLE_STATUS_NO_TRIANGULATION": "no_triangulation",
-                     "HOLE_STATUS_FAILED": "failed"}
+                     "HOLE_STATUS_FAILED": "failed",
+                     "HOLE_STATUS_LISTED": "listed"}
     names = {pb.Escalation.Name(x): dot_client.HoleReport.from_proto(
         pb.HoleReport(escalation=x)).escalation for x in pb.Escalation.values()}
     assert names == {"ESCALATION_NONE": "",

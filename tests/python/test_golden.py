@@ -57,6 +57,8 @@ def test_fill_holes_stream():
         assert getattr(r.report, key) == expected[key], key
     assert r.report.version == 2
     assert [h.status for h in r.report.holes] == ["filled"]
+    hole = r.report.holes[0]
+    assert len(hole.centroid) == 3 and hole.perimeter > 0 < hole.diameter
     assert progress and progress[-1].holes_done == 1
     chunks = [m.mesh for m in messages if m.HasField("mesh")]
     assert sum(1 for c in chunks if c.vertices) >= 2  # 1 KiB chunks

@@ -16,9 +16,9 @@ from ._errors import DotError, InvalidInput, NoTriangulation, from_rpc_error
 from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._proto.dot.v1 import triangulation_pb2_grpc as pb_grpc
 from ._proto.grpc.health.v1 import health_pb2, health_pb2_grpc
-from ._types import (FillOptions, FillPatches, FillProgress, FillResult,
-                     Progress, Result, ServerInfo, TriangulateOptions,
-                     WeightsLike)
+from ._types import (FillOptions, FillPatches, FillProgress, FillReport,
+                     FillResult, Progress, Result, ServerInfo,
+                     TriangulateOptions, WeightsLike)
 
 ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of tuples, ...
 FaceLike = Union[ArrayLike, Sequence[Sequence[int]]]
@@ -533,11 +533,28 @@ class Client:
                                           cancel)
         return patches
 
+    def list_holes(self, vertices: ArrayLike, faces: FaceLike, *,
+                   options: Optional[FillOptions] = None,
+                   request_id: str = "",
+                   timeout: Optional[float] = _DEFAULT,
+                   cancel: Optional[CancelToken] = None,
+                   **changes: Any) -> FillReport:
+        """The holes of a mesh, filled none (FillHoles with ``dry_run``):
+        a :class:`FillReport` with one :class:`HoleReport` per loop, its
+        size and place, ``"listed"`` when the selection in ``options`` (and
+        the keyword ``changes`` to it, as :meth:`fill_patches` takes them)
+        would fill it, else ``"skipped"`` with the reason."""
+        o = FillOptions.merged(options, **changes)
+        patches: FillPatches = self._fill(vertices, faces, o, "patches", None,
+                                          request_id, timeout, cancel,
+                                          dry_run=True)
+        return patches.report
+
     def _fill(self, vertices: ArrayLike, faces: FaceLike,
               options: FillOptions, answer: str,
               progress: Optional[Callable[[FillProgress], None]],
               request_id: str, timeout: Any,
-              cancel: Optional[CancelToken]) -> Any:
+              cancel: Optional[CancelToken], dry_run: bool = False) -> Any:
         v = check.points("vertices", vertices)
         f = check.faces(faces, len(v))
         for i, vertex in enumerate(options.loops_through):
@@ -545,7 +562,7 @@ class Client:
                 raise InvalidInput(
                     f"loops_through[{i}] = {vertex} is not a vertex of the "
                     f"mesh (it has {len(v)})")
-        message = options.to_proto(answer)
+        message = options.to_proto(answer, dry_run)
         deadline = self._deadline(timeout)
         requests = wire.fill_requests(str(request_id), message, v, f)
         call = self._stub.FillHoles(requests, timeout=deadline)

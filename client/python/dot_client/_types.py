@@ -216,7 +216,10 @@ class RepairReport(_Plain):
 @dataclass
 class HoleReport(_Plain):
     """One hole: ``status`` is ``"filled"``, ``"skipped"``,
-    ``"no_triangulation"`` or ``"failed"`` (``reason`` says why);
+    ``"no_triangulation"``, ``"failed"`` (``reason`` says why) or, from
+    :meth:`Client.list_holes`, ``"listed"`` (selected, not filled);
+    ``diameter`` (bounding-box diagonal), ``perimeter`` and ``centroid``
+    (length-weighted, x y z) give the loop's size and place;
     ``escalation``, the search step that made the patch, is
     ``"delaunay"``, ``"protected_edges"``, ``"all_triangles"`` or ``""``
     (no patch); ``split_faces`` lists input faces split by edge protection.
@@ -241,11 +244,14 @@ class HoleReport(_Plain):
     refine_ms: float = 0.0
     fair_ms: float = 0.0
     check_ms: float = 0.0
+    diameter: float = 0.0
+    perimeter: float = 0.0
+    centroid: Tuple[float, ...] = ()
 
     @classmethod
     def from_proto(cls, m: Any) -> "HoleReport":
         return _scalars(
-            cls, m,
+            cls, m, centroid=tuple(m.centroid),
             status=_enum_name(m.status, pb.HoleStatus, "HOLE_STATUS_"),
             escalation=_enum_name(m.escalation, pb.Escalation, "ESCALATION_",
                                   zero=""),
@@ -271,6 +277,7 @@ class FillReport(_Plain):
     repair: RepairReport = field(default_factory=RepairReport)
     input_vertices: int = 0
     input_faces: int = 0
+    listed: int = 0  # list_holes: selected, not filled
 
     @classmethod
     def from_proto(cls, m: Any) -> "FillReport":
@@ -714,9 +721,10 @@ class FillOptions(_Options):
             "memory_budget_bytes", self.memory_budget_bytes,
             maximum=check.UINT64_MAX))
 
-    def to_proto(self, answer: str = "mesh") -> Any:
+    def to_proto(self, answer: str = "mesh", dry_run: bool = False) -> Any:
         """The FillOptions message, asking for ``answer``: ``"mesh"`` (the
-        whole filled mesh) or ``"patches"``."""
+        whole filled mesh) or ``"patches"``; ``dry_run``: the report alone,
+        nothing filled."""
         answers = _enum_values(pb.FillAnswer, "FILL_ANSWER_")
         o = pb.FillOptions(answer=answers[check.choice("answer", answer,
                                                        list(answers))])
@@ -735,4 +743,5 @@ class FillOptions(_Options):
         o.no_repair = self.no_repair
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
+        o.dry_run = dry_run
         return o

@@ -110,6 +110,9 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //  repair           FillSoup only: repair the soup first (merge duplicate
 //                   vertices, drop degenerate and duplicate faces, orient);
 //                   false: only triangulate its polygons. Default true.
+//  dry_run          find and select the holes, fill none: every selected
+//                   hole is reported kListed with its size, the mesh is
+//                   returned unchanged. Default false.
 struct FillOptions {
   MetricWeights weights = DefaultFillWeights();
   bool scale_free_weights = true;
@@ -121,12 +124,14 @@ struct FillOptions {
   HoleSelection selection;
   int threads = 0;
   bool repair = true;
+  bool dry_run = false;
 
   static MetricWeights DefaultFillWeights();
   static Options DefaultTriangulateOptions();
 };
 
-enum class HoleStatus { kFilled, kSkipped, kNoTriangulation, kFailed };
+// kListed: selected but not filled, because FillOptions::dry_run.
+enum class HoleStatus { kFilled, kSkipped, kNoTriangulation, kFailed, kListed };
 std::string_view HoleStatusName(HoleStatus s);  // "filled", ...
 
 // Which search step produced a hole's patch.
@@ -137,6 +142,10 @@ struct HoleReport {
   int32_t id = 0;
   int32_t boundary_vertices = 0;
   bool pinched = false;
+  // The loop's size and place, in the mesh's units: its bounding-box
+  // diagonal, its length, and the centroid of its edges (length-weighted).
+  double diameter = 0, perimeter = 0;
+  Vec3 centroid;
   HoleStatus status = HoleStatus::kSkipped;
   std::string reason;  // why skipped / not filled / failed; fairing notes
   Escalation escalation = Escalation::kNone;
@@ -155,6 +164,7 @@ struct HoleReport {
 struct FillReport {
   std::vector<HoleReport> holes;  // one per loop, by id
   int32_t loops = 0, filled = 0, skipped = 0, unfilled = 0;
+  int32_t listed = 0;  // dry_run: selected, not filled
   int32_t added_vertices = 0, added_faces = 0;
   bool closed = false;  // no border edge left
   double total_ms = 0;

@@ -123,6 +123,27 @@ Status Select(const std::vector<HoleLoop>& loops, const HoleSelection& sel,
   return OkStatus();
 }
 
+// The loop's length and the centroid of its edges, each edge weighted by
+// its length (a loop's vertices may crowd on one side).
+void Measure(const MeshData& mesh, const HoleLoop& loop, HoleReport* r) {
+  const size_t n = loop.vertices.size();
+  Vec3 sum;
+  double length = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& a = mesh.vertices[loop.vertices[i]];
+    const Vec3& b = mesh.vertices[loop.vertices[(i + 1) % n]];
+    const double l = Norm(b - a);
+    sum = sum + (0.5 * l) * (a + b);
+    length += l;
+  }
+  r->perimeter = length;
+  if (length > 0) {
+    r->centroid = (1.0 / length) * sum;
+  } else if (n > 0) {
+    r->centroid = mesh.vertices[loop.vertices[0]];
+  }
+}
+
 bool AllFinite(const std::vector<Vec3>& points) {
   return std::all_of(points.begin(), points.end(),
                      [](const Vec3& p) { return IsFinite(p); });
@@ -407,19 +428,33 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
     out.status = between.status();
     return out;
   }
-  const auto topo = BuildMeshTopology(mesh);
-  if (!between.Poll()) {
-    out.status = between.status();
-    return out;
-  }
-
   std::vector<HoleWork> work(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) {
     HoleReport& r = work[i].report;
     r.id = loops[i].id;
     r.boundary_vertices = static_cast<int32_t>(loops[i].vertices.size());
     r.pinched = loops[i].pinched;
+    r.diameter = loops[i].diameter;
+    Measure(mesh, loops[i], &r);
     r.reason = skip[i];
+    if (options.dry_run && skip[i].empty()) r.status = HoleStatus::kListed;
+  }
+  if (options.dry_run) {
+    out.mesh = mesh;
+    for (HoleWork& w : work) {
+      (w.report.status == HoleStatus::kSkipped ? out.report.skipped
+                                               : out.report.listed)++;
+      out.report.holes.push_back(std::move(w.report));
+    }
+    out.report.loops = static_cast<int32_t>(loops.size());
+    out.report.closed = loops.empty();
+    out.report.total_ms = MsSince(t_start);
+    return out;
+  }
+  const auto topo = BuildMeshTopology(mesh);
+  if (!between.Poll()) {
+    out.status = between.status();
+    return out;
   }
   // The per-hole calls report no progress of their own (they run at once).
   Control hole_control = control;
@@ -520,6 +555,8 @@ std::string_view HoleStatusName(HoleStatus s) {
       return "skipped";
     case HoleStatus::kNoTriangulation:
       return "no_triangulation";
+    case HoleStatus::kListed:
+      return "listed";
     case HoleStatus::kFailed:
       return "failed";
   }

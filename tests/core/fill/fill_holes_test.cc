@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
@@ -82,6 +83,45 @@ TEST(FillHolesTest, HolesCutInClosedMeshesAreFilledNearTheTruth) {
         "edges from the removed surface\n",
         name, d);
     EXPECT_LT(d, 3.0) << name;
+  }
+}
+
+TEST(FillHolesTest, ADryRunListsEachLoopWithItsSizeAndFillsNone) {
+  // A square hole of side 0.25 in the unit grid, and the grid's outer
+  // border of side 1: sizes known exactly.
+  const MeshData mesh = testing::GridWithSquareHole(16, 6, 10);
+  FillOptions o;
+  o.dry_run = true;
+  o.selection.max_edges = 20;  // the outer border (64 edges) is skipped
+  const FillResult r = FillHoles(mesh, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.mesh.triangles, mesh.triangles);  // unchanged
+  EXPECT_EQ(r.mesh.vertices.size(), mesh.vertices.size());
+  ASSERT_EQ(r.report.holes.size(), 2u);
+  EXPECT_EQ(r.report.listed, 1);
+  EXPECT_EQ(r.report.skipped, 1);
+  EXPECT_EQ(r.report.filled + r.report.unfilled, 0);
+  EXPECT_FALSE(r.report.closed);
+  int listed = 0;
+  for (const HoleReport& h : r.report.holes) {
+    const bool inner = h.boundary_vertices == 16;
+    EXPECT_EQ(h.status, inner ? HoleStatus::kListed : HoleStatus::kSkipped);
+    EXPECT_EQ(HoleStatusName(h.status), inner ? "listed" : "skipped");
+    EXPECT_NEAR(h.perimeter, inner ? 1.0 : 4.0, 1e-12);
+    EXPECT_NEAR(h.diameter, inner ? 0.25 * std::sqrt(2.0) : std::sqrt(2.0),
+                1e-12);
+    EXPECT_NEAR(h.centroid.x, 0.5, 1e-12);
+    EXPECT_NEAR(h.centroid.y, 0.5, 1e-12);
+    EXPECT_EQ(h.patch_triangles, 0);
+    listed += inner;
+  }
+  EXPECT_EQ(listed, 1);
+  // A real fill reports the same sizes.
+  o.dry_run = false;
+  const FillResult filled = FillHoles(mesh, o);
+  ASSERT_TRUE(filled.status.ok());
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(filled.report.holes[i].perimeter, r.report.holes[i].perimeter);
   }
 }
 
