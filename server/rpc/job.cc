@@ -73,6 +73,7 @@ std::shared_ptr<Job> JobRunner::NewJob(
     return job;
   }
   job->id = id;
+  job->budget_ms = budget_ms;
   SetDeadline(options_, budget_ms, client_deadline, job.get());
   return job;
 }

@@ -52,6 +52,7 @@ struct Job {
   v1::Options wire;
   Clock::time_point arrived, started, finished, deadline;
   bool deadline_is_limit = false;  // the server's limit, not the client's
+  uint32_t budget_ms = 0;          // the request's own time budget; 0: none
   std::atomic<bool> cancel{false};
   std::atomic<StopReason> stop{StopReason::kNone};  // the first reason wins
 

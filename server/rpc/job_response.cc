@@ -32,10 +32,21 @@ grpc::Status JobStatus(const Job& job, int max_compute_ms) {
       return {grpc::StatusCode::DEADLINE_EXCEEDED,
               "the client's deadline passed (" + s.message + ")"};
     }
+    // Name the limit that stopped it, and who can raise it.
+    const std::string limit = std::to_string(max_compute_ms) + " ms";
+    if (job.budget_ms > 0 &&
+        job.budget_ms < static_cast<uint32_t>(max_compute_ms)) {
+      return {grpc::StatusCode::DEADLINE_EXCEEDED,
+              "the request's time limit (time_budget_ms " +
+                  std::to_string(job.budget_ms) + " ms) passed (" + s.message +
+                  "); raise it (dotctl --time-budget-ms) up to the server's " +
+                  limit};
+    }
     return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "compute time limit exceeded (" + s.message +
-                "); raise options.time_budget_ms up to the server's " +
-                std::to_string(max_compute_ms) + " ms"};
+            "the server's compute time limit (" + limit + ") passed (" +
+                s.message +
+                "); only its operator can raise it (dot-server "
+                "--max-compute-ms)"};
   }
   if (s.code != StatusCode::kOk && s.code != StatusCode::kNoTriangulation) {
     return wire::ToGrpcStatus(s);

@@ -282,11 +282,32 @@ TEST(ServiceTest, ErrorsAreStatusCodesNamingTheProblem) {
   slow.mutable_options()->set_time_budget_ms(30);
   st = TriangulateRemote(*roomy.stub, slow, Input(slow), 30).status;
   EXPECT_EQ(st.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
-  EXPECT_NE(st.error_message().find("compute time limit"), std::string::npos);
+  EXPECT_NE(st.error_message().find("request's time limit (time_budget_ms 30 "
+                                    "ms) passed"),
+            std::string::npos)
+      << st.error_message();
+  EXPECT_NE(st.error_message().find("dotctl --time-budget-ms"),
+            std::string::npos);
   const CallOutcome timed_out = TriangulateRemote(
       *roomy.stub, CurveRequest(Curve::kTwist, 999, Weights(Metric::kArea)), {},
       0.03);
   EXPECT_EQ(timed_out.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+
+  // The server's own limit: the message says only its operator can raise
+  // it, and with which flag (before: "raise options.time_budget_ms", which
+  // the server's limit caps anyway).
+  auto tight_config = testing::LoopbackConfig();
+  tight_config.service.max_compute_ms = 30;
+  auto tight = StartServer(tight_config);
+  auto unbudgeted =
+      CurveRequest(Curve::kTwist, 999, Weights(Metric::kSquaredDihedral));
+  st = TriangulateRemote(*tight.stub, unbudgeted, Input(unbudgeted), 30).status;
+  EXPECT_EQ(st.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  EXPECT_NE(st.error_message().find("server's compute time limit (30 ms)"),
+            std::string::npos)
+      << st.error_message();
+  EXPECT_NE(st.error_message().find("dot-server --max-compute-ms"),
+            std::string::npos);
 }
 
 // A long run cancelled by its client frees the only compute thread at once.
