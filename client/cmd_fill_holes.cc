@@ -273,28 +273,35 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       report(kOutcomeOutputError, kExitUsage, output_error, false);
       return;
     }
+    // On a terminal, the phase and the holes done, on one line of stderr.
+    const bool bar = isatty(STDERR_FILENO) && !ctx->quiet;
+    auto phase = [bar](const std::string& text) {
+      if (bar) std::cerr << "\r" << text << "\033[K" << std::flush;
+    };
+    const auto on_progress = [&phase](const v1::FillProgress& p) {
+      phase("  holes " + std::to_string(p.holes_done()) + "/" +
+            std::to_string(p.holes_total()));
+    };
+    phase("  reading " + f.input);
     PolygonSoup soup;
     const Status read = ReadInput(f, &soup);
+    phase("");
     if (!read.ok()) {
       report(kOutcomeInputError, kExitUsage, read.message, false);
       return;
     }
     if (f.local) {
-      o = FillLocal(f.input, f.ToWire(), std::move(soup));
+      phase("  repairing, finding the holes");
+      o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
     } else {
       auto channel = ChannelOrReport(ctx);
       if (!channel) return;
       auto stub = v1::Triangulator::NewStub(channel);
-      const bool bar = isatty(STDERR_FILENO) && !ctx->quiet;
+      phase("  uploading, repairing, finding the holes");
       o = FillRemote(*stub, f.input, f.ToWire(), soup,
-                     ctx->connection.timeout_s,
-                     [bar](const v1::FillProgress& p) {
-                       if (!bar) return;
-                       std::cerr << "\r  holes " << p.holes_done() << "/"
-                                 << p.holes_total() << std::flush;
-                     });
-      if (bar) std::cerr << "\r              \r";
+                     ctx->connection.timeout_s, on_progress);
     }
+    phase("");
     if (!o.status.ok()) {
       // A mesh or options the service refuses are unusable input (2).
       const int code =
@@ -315,7 +322,9 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       }
       return;
     }
+    phase("  writing " + target.Name());
     Status w = WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
+    phase("");
     std::string write_error = w.ok() ? sink.Commit() : w.message;
     if (!write_error.empty()) {
       report(kOutcomeWriteFailed, kExitFailed, write_error, true);

@@ -21,7 +21,7 @@ constexpr size_t kRequestBytes = 1 << 20;
 }  // namespace
 
 FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
-                      PolygonSoup soup) {
+                      PolygonSoup soup, const FillProgressFn& on_progress) {
   const auto t0 = Clock::now();
   FillOutcome out;
   FillOptions options;
@@ -43,7 +43,17 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
     return out;
   }
   const auto sent_vertices = static_cast<int64_t>(soup.vertices.size());
-  SoupFillResult r = FillSoup(std::move(soup), options, control);
+  HoleProgressFn on_hole;
+  if (on_progress) {
+    on_hole = [&](int done, int total) {
+      v1::FillProgress p;
+      p.set_holes_done(done);
+      p.set_holes_total(total);
+      p.set_elapsed_ms(MsSince(t0));
+      on_progress(p);
+    };
+  }
+  SoupFillResult r = FillSoup(std::move(soup), options, control, on_hole);
   out.status = wire::ToGrpcStatus(r.fill.status);
   if (r.fill.status.ok()) {
     wire::FillReportToWire(r.fill.report, r.repair,

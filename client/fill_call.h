@@ -33,8 +33,10 @@ using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 // In this process: dot::FillSoup, the function the server runs (repair
 // unless options.no_repair, then FillHoles), with the server's defaults.
 // The soup is taken by value: move it in to hold the mesh once.
+// `on_progress` gets the same reports a server sends, one at a time.
 FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
-                      PolygonSoup mesh);
+                      PolygonSoup mesh,
+                      const FillProgressFn& on_progress = nullptr);
 
 FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        const v1::FillOptions& options, const PolygonSoup& mesh,
