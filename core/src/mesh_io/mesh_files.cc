@@ -377,22 +377,29 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
   if (points.size() > static_cast<size_t>(INT32_MAX)) {
     return InvalidArgument("'" + path + "' has more than 2^31 vertices");
   }
-  out->vertices.reserve(points.size());
+  // Each reader copy is released as it is converted, so the peak is about
+  // one copy of the mesh, not two (a face's index vector frees a heap
+  // chunk of the size the next converted face takes).
+  const size_t n = points.size();
+  out->vertices.reserve(n);
   for (const Point& p : points) out->vertices.push_back({p.x(), p.y(), p.z()});
+  std::vector<Point>().swap(points);
   out->faces.reserve(polygons.size());
   for (size_t f = 0; f < polygons.size(); ++f) {
     std::vector<int32_t> face;
+    face.reserve(polygons[f].size());
     for (std::size_t v : polygons[f]) {
-      if (v >= points.size()) {
+      if (v >= n) {
         return InvalidArgument("'" + path + "': face " + std::to_string(f) +
                                " has vertex index " + std::to_string(v) +
-                               ", outside 0.." +
-                               std::to_string(points.size() - 1));
+                               ", outside 0.." + std::to_string(n - 1));
       }
       face.push_back(static_cast<int32_t>(v));
     }
+    std::vector<std::size_t>().swap(polygons[f]);
     out->faces.push_back(std::move(face));
   }
+  std::vector<std::vector<std::size_t>>().swap(polygons);
   for (size_t v = 0; v < out->vertices.size(); ++v) {
     if (!IsFinite(out->vertices[v])) {
       return InvalidArgument("'" + path + "': vertex " + std::to_string(v) +
