@@ -74,7 +74,7 @@ void CheckFill(const dot::MeshData& input, const dot::FillResult& r) {
     }
   }
   const dot::FillReport& rep = r.report;
-  if (rep.filled + rep.skipped + rep.unfilled != rep.loops ||
+  if (rep.filled + rep.skipped + rep.unfilled + rep.listed != rep.loops ||
       static_cast<int32_t>(rep.holes.size()) != rep.loops) {
     Fail("hole counts do not add up");
   }
