@@ -250,6 +250,11 @@ struct Merged {
   std::vector<bool> split;             // input faces split so far
   std::unordered_set<uint64_t> edges;  // undirected edges of new faces
   std::vector<Triangle> faces;         // new faces and pieces, mesh ids
+  // Per merged hole: the box of its faces, which start at faces[start]. A
+  // new patch is checked against the faces of the holes whose box meets
+  // its own, not against every face merged so far (thousands of holes).
+  std::vector<Box3> boxes;
+  std::vector<size_t> starts;
 };
 
 // Appends the hole's new vertices and faces; split faces are replaced in
@@ -290,20 +295,24 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
   out->mesh.vertices.insert(out->mesh.vertices.end(),
                             w.patch.new_vertices.begin(),
                             w.patch.new_vertices.end());
-  if (!merged->faces.empty()) {
-    auto point = [&](int32_t v) -> const Vec3& {
-      return out->mesh.vertices[v];
-    };
-    Box3 box;
-    for (const Triangle& t : fresh) {
-      for (int32_t v : t) box.Add(point(v));
-    }
-    std::vector<Triangle> check = fresh;
-    for (const Triangle& t : merged->faces) {
+  auto point = [&](int32_t v) -> const Vec3& { return out->mesh.vertices[v]; };
+  Box3 box;
+  for (const Triangle& t : fresh) {
+    for (int32_t v : t) box.Add(point(v));
+  }
+  std::vector<Triangle> check = fresh;
+  for (size_t k = 0; k < merged->boxes.size(); ++k) {
+    if (!merged->boxes[k].Meets(box)) continue;
+    const size_t end = k + 1 < merged->starts.size() ? merged->starts[k + 1]
+                                                     : merged->faces.size();
+    for (size_t f = merged->starts[k]; f < end; ++f) {
+      const Triangle& t = merged->faces[f];
       Box3 b;
       for (int32_t v : t) b.Add(point(v));
       if (b.Meets(box)) check.push_back(t);
     }
+  }
+  if (check.size() > fresh.size()) {
     // Pairs within the hole were checked already: count only the others.
     int64_t with_others = 0, within = 0;
     Status s =
@@ -343,6 +352,8 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
     auto& mapped = kept.patch.pieces.emplace_back();
     for (const Triangle& t : pieces) mapped.push_back(remap(t));
   }
+  merged->boxes.push_back(box);
+  merged->starts.push_back(merged->faces.size());
   for (const Triangle& t : fresh) {
     for (int k = 0; k < 3; ++k) {
       merged->edges.insert(UndirectedEdgeKey(t[k], t[(k + 1) % 3]));
