@@ -19,9 +19,9 @@
 // endian float64 by default, ASCII on request), every coordinate exactly
 // (17 significant digits in text), or .stl (binary by default: float32, so
 // coordinates are rounded to single precision; ASCII writes every digit,
-// though STL readers, CGAL's included, read single precision); read with CGAL's polygon-soup readers
-// from .off, .obj, .ply (ASCII or binary, either byte order) and .stl
-// (ASCII or binary), polygons triangulated.
+// though STL readers, CGAL's included, read single precision); read with CGAL's
+// polygon-soup readers from .off, .obj, .ply (ASCII or binary, either byte
+// order) and .stl (ASCII or binary), polygons triangulated.
 #ifndef DOT_IO_H_
 #define DOT_IO_H_
 
