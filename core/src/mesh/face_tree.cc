@@ -17,30 +17,29 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 K::Point_3 ToPoint(const Vec3& p) { return {p.x, p.y, p.z}; }
 
-// Face id -> its triangle and a point of it, read from the mesh on demand:
+// Face id -> its triangle, or a point of it, read from the mesh on demand:
 // the tree holds ids only (ExternalPropertyMaps: the maps are stored once).
-struct TriangleMap {
+K::Triangle_3 Read(const MeshData& m, int32_t f, K::Triangle_3*) {
+  const Triangle& t = m.triangles[f];
+  return {ToPoint(m.vertices[t[0]]), ToPoint(m.vertices[t[1]]),
+          ToPoint(m.vertices[t[2]])};
+}
+K::Point_3 Read(const MeshData& m, int32_t f, K::Point_3*) {
+  return ToPoint(m.vertices[m.triangles[f][0]]);
+}
+template <class Value>
+struct FaceMap {
   using key_type = int32_t;
-  using value_type = K::Triangle_3;
-  using reference = value_type;
+  using value_type = Value;
+  using reference = Value;
   using category = boost::readable_property_map_tag;
   const MeshData* mesh = nullptr;
-  friend value_type get(const TriangleMap& m, key_type f) {
-    const Triangle& t = m.mesh->triangles[f];
-    return {ToPoint(m.mesh->vertices[t[0]]), ToPoint(m.mesh->vertices[t[1]]),
-            ToPoint(m.mesh->vertices[t[2]])};
+  friend Value get(const FaceMap& m, key_type f) {
+    return Read(*m.mesh, f, static_cast<Value*>(nullptr));
   }
 };
-struct CornerMap {
-  using key_type = int32_t;
-  using value_type = K::Point_3;
-  using reference = value_type;
-  using category = boost::readable_property_map_tag;
-  const MeshData* mesh = nullptr;
-  friend value_type get(const CornerMap& m, key_type f) {
-    return ToPoint(m.mesh->vertices[m.mesh->triangles[f][0]]);
-  }
-};
+using TriangleMap = FaceMap<K::Triangle_3>;
+using CornerMap = FaceMap<K::Point_3>;
 
 using Primitive = CGAL::AABB_primitive<int32_t, TriangleMap, CornerMap,
                                        CGAL::Tag_true, CGAL::Tag_false>;
