@@ -229,6 +229,27 @@ void PrintListing(const std::string& input, const v1::FillReport& r) {
             << " (dry run: nothing filled or written)\n";
 }
 
+// "  holes 40/1000, 12 s left" for the terminal's status line.
+std::string ProgressLine(const v1::FillProgress& p) {
+  switch (p.phase()) {
+    case v1::FILL_PHASE_REPAIR:
+      return "  repairing the mesh";
+    case v1::FILL_PHASE_LOOPS:
+      return "  finding the holes";
+    case v1::FILL_PHASE_MERGE:
+      return "  merging " + std::to_string(p.holes_total()) + " patches";
+    default:
+      break;
+  }
+  std::string line = "  holes " + std::to_string(p.holes_done()) + "/" +
+                     std::to_string(p.holes_total());
+  if (p.eta_ms() > 0) {
+    line += ", " + std::to_string(static_cast<int64_t>(p.eta_ms() / 1000 + 1)) +
+            " s left";
+  }
+  return line;
+}
+
 }  // namespace
 
 void AddFillHolesCommand(CLI::App& app, Context* ctx) {
@@ -266,6 +287,9 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
         {"filled", "ply", "off", "--output-format"});
     AtomicOutput sink;
     std::string output_error = f.dry_run ? "" : target.error;
+    if (f.dry_run && !f.output.empty()) {
+      output_error = "--dry-run writes no mesh: leave out -o " + f.output;
+    }
     if (output_error.empty() && !f.dry_run) {
       output_error = sink.Open(target.Name());
     }
@@ -279,8 +303,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       if (bar) std::cerr << "\r" << text << "\033[K" << std::flush;
     };
     const auto on_progress = [&phase](const v1::FillProgress& p) {
-      phase("  holes " + std::to_string(p.holes_done()) + "/" +
-            std::to_string(p.holes_total()));
+      phase(ProgressLine(p));
     };
     phase("  reading " + f.input);
     PolygonSoup soup;
@@ -291,18 +314,17 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       return;
     }
     if (f.local) {
-      phase("  repairing, finding the holes");
       o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
     } else {
       auto channel = ChannelOrReport(ctx);
       if (!channel) return;
       auto stub = v1::Triangulator::NewStub(channel);
-      phase("  uploading, repairing, finding the holes");
+      phase("  uploading " + std::to_string(soup.faces.size()) + " faces");
       o = FillRemote(*stub, f.input, f.ToWire(), soup,
                      ctx->connection.timeout_s, on_progress);
     }
     phase("");
-    if (!o.status.ok()) {
+    if (!o.status.ok() && !o.partial) {
       // A mesh or options the service refuses are unusable input (2).
       const int code =
           o.status.error_code() == grpc::StatusCode::INVALID_ARGUMENT
@@ -332,10 +354,18 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
     }
     written = target.Name();
     const v1::FillReport& r = o.report;
-    const int code = r.unfilled() > 0 ? kExitNoTriangulation : kExitOk;
+    const std::string stopped =
+        o.partial ? std::string(wire::GrpcCodeName(o.status.error_code())) +
+                        ": " + o.status.error_message()
+                  : "";
+    const int code = o.partial          ? kExitPartial
+                     : r.unfilled() > 0 ? kExitNoTriangulation
+                                        : kExitOk;
     if (f.json) {
-      report(r.unfilled() > 0 ? kOutcomeNoTriangulation : kOutcomeOk, code, "",
-             true);
+      report(o.partial          ? kOutcomePartial
+             : r.unfilled() > 0 ? kOutcomeNoTriangulation
+                                : kOutcomeOk,
+             code, stopped, true);
       return;
     }
     ctx->exit_code = std::max(ctx->exit_code, code);
@@ -351,6 +381,9 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
          << r.added_vertices() << " vertices, +" << r.added_faces()
          << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> "
          << written << std::endl;
+    if (o.partial) {
+      text << "  stopped early: " << stopped << "\n";
+    }
     for (const std::string& note : FillNotes(r)) text << "  " << note << "\n";
   });
 }

@@ -11,6 +11,7 @@ enum ExitCode : int {
   kExitUsage = 2,            // bad flags or unreadable input
   kExitUnavailable = 3,      // the server could not be reached
   kExitNoTriangulation = 4,  // some polygon has no triangulation
+  kExitPartial = 5,          // a fill stopped early; what it did is written
 };
 
 }  // namespace dot::client

@@ -43,19 +43,24 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
     return out;
   }
   const auto sent_vertices = static_cast<int64_t>(soup.vertices.size());
-  HoleProgressFn on_hole;
+  dot::FillProgressFn on_phase;
+  wire::FillProgressClock clock(t0);
   if (on_progress) {
-    on_hole = [&](int done, int total) {
-      v1::FillProgress p;
-      p.set_holes_done(done);
-      p.set_holes_total(total);
-      p.set_elapsed_ms(MsSince(t0));
-      on_progress(p);
+    on_phase = [&](FillPhase phase, int done, int total) {
+      on_progress(clock.Report(phase, done, total));
     };
   }
-  SoupFillResult r = FillSoup(std::move(soup), options, control, on_hole);
+  SoupFillResult r = FillSoup(std::move(soup), options, control, on_phase);
   out.status = wire::ToGrpcStatus(r.fill.status);
-  if (r.fill.status.ok()) {
+  if (r.fill.status.code == StatusCode::kDeadlineExceeded) {
+    out.status =
+        grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
+                     "the time limit (--time-budget-ms " +
+                         std::to_string(wire_options.time_budget_ms()) +
+                         ") passed: " + r.fill.status.message);
+  }
+  out.partial = r.fill.partial;
+  if (r.fill.status.ok() || r.fill.partial) {
     wire::FillReportToWire(r.fill.report, r.repair,
                            static_cast<size_t>(r.input_vertices),
                            static_cast<size_t>(r.input_faces), &out.report);
@@ -111,7 +116,10 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   }
   out.status = stream->Finish();
   out.latency_ms = MsSince(t0);
-  if (!out.status.ok()) return out;
+  // A fill that stopped early still answers whole, then says why it
+  // stopped; anything else that is not OK brings nothing to keep.
+  out.partial = !out.status.ok() && have_report && out.report.stopped() > 0;
+  if (!out.status.ok() && !out.partial) return out;
   if (!have_report) {
     out.status = grpc::Status(grpc::StatusCode::INTERNAL,
                               "the server ended the stream without a report");
@@ -127,6 +135,7 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   }
   out.patches = std::move(patches.patches());
   if (!assembled.ok()) {
+    out.partial = false;
     out.status = grpc::Status(grpc::StatusCode::INTERNAL,
                               "bad mesh from the server: " + assembled.message);
   }
@@ -159,6 +168,10 @@ std::vector<std::string> FillNotes(const v1::FillReport& r) {
     notes.push_back(std::to_string(r.unfilled()) +
                     " holes left open: see each hole's reason");
   }
+  if (r.stopped() > 0) {
+    notes.push_back(std::to_string(r.stopped()) +
+                    " holes not filled: the fill stopped before them");
+  }
   return notes;
 }
 
@@ -174,9 +187,9 @@ std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
   e.error = error;
   e.output = output_path;
   e.latency_ms = o.latency_ms;
-  if (called && o.status.ok()) e.notes = FillNotes(o.report);
-  e.fields = {{"report", called && o.status.ok() ? ProtoJson(o.report)
-                                                 : std::string("null")}};
+  const bool answered = called && (o.status.ok() || o.partial);
+  if (answered) e.notes = FillNotes(o.report);
+  e.fields = {{"report", answered ? ProtoJson(o.report) : std::string("null")}};
   return e.ToJson();
 }
 

@@ -16,8 +16,12 @@
 namespace dot::client {
 
 struct FillOutcome {
-  grpc::Status status;             // of the RPC (or of the local run)
-  v1::FillReport report;           // valid when status is OK
+  grpc::Status status;  // of the RPC (or of the local run)
+  // The fill stopped early (its time limit, a drain, a cancel) and status
+  // says why, but the answer came whole: report, mesh and patches hold
+  // every hole finished before the stop (report.stopped() the others).
+  bool partial = false;
+  v1::FillReport report;           // valid when status is OK or partial
   MeshData mesh;                   // the filled mesh (FILL_ANSWER_MESH)
   std::vector<SentPatch> patches;  // FILL_ANSWER_PATCHES
   double latency_ms = 0;

@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
       "Talks to a dot-server (--server, or DOT_SERVER), or runs the core "
       "in-process with 'triangulate --local'.\n"
       "Exit codes: 0 ok, 1 a request failed, 2 usage or unreadable input, "
-      "3 server unreachable, 4 some polygon has no triangulation."};
+      "3 server unreachable, 4 some polygon has no triangulation, 5 a fill "
+      "stopped early (what it filled is written)."};
   app.set_version_flag("--version", "dotctl " DOT_VERSION);
   app.require_subcommand(1);
   // Global options (--server, TLS, --timeout, -q, -v) are accepted after the

@@ -55,6 +55,8 @@ inline constexpr const char* kOutcomeInputError = "input_error";
 inline constexpr const char* kOutcomeOutputError = "output_error";
 inline constexpr const char* kOutcomeCallFailed = "call_failed";
 inline constexpr const char* kOutcomeWriteFailed = "write_failed";
+// fill-holes: stopped early (time limit, drain); what it filled is written.
+inline constexpr const char* kOutcomePartial = "partial";
 
 // What dotctl reports for one input, whatever became of it.
 struct InputReport {

@@ -69,6 +69,8 @@ v1::HoleStatus HoleStatusToWire(HoleStatus status) {
       return v1::HOLE_STATUS_FAILED;
     case HoleStatus::kListed:
       return v1::HOLE_STATUS_LISTED;
+    case HoleStatus::kStopped:
+      return v1::HOLE_STATUS_STOPPED;
   }
   return v1::HOLE_STATUS_UNSPECIFIED;
 }
@@ -126,6 +128,7 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
   out->set_skipped(r.skipped);
   out->set_unfilled(r.unfilled);
   out->set_listed(r.listed);
+  out->set_stopped(r.stopped);
   out->set_added_vertices(r.added_vertices);
   out->set_added_faces(r.added_faces);
   out->set_closed(r.closed);
@@ -142,9 +145,43 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
   out->set_input_faces(static_cast<uint32_t>(input_faces));
 }
 
+v1::FillPhase FillPhaseToWire(FillPhase phase) {
+  switch (phase) {
+    case FillPhase::kRepair:
+      return v1::FILL_PHASE_REPAIR;
+    case FillPhase::kLoops:
+      return v1::FILL_PHASE_LOOPS;
+    case FillPhase::kHoles:
+      return v1::FILL_PHASE_HOLES;
+    case FillPhase::kMerge:
+      return v1::FILL_PHASE_MERGE;
+  }
+  return v1::FILL_PHASE_UNSPECIFIED;
+}
+
+v1::FillProgress FillProgressClock::Report(FillPhase phase, int holes_done,
+                                           int holes_total) {
+  const auto now = std::chrono::steady_clock::now();
+  if (phase == FillPhase::kHoles && !in_holes_) {
+    in_holes_ = true;
+    holes_start_ = now;
+  }
+  v1::FillProgress p;
+  p.set_phase(FillPhaseToWire(phase));
+  p.set_holes_done(holes_done);
+  p.set_holes_total(holes_total);
+  p.set_elapsed_ms(MsSince(start_));
+  if (phase == FillPhase::kHoles && holes_done > 0) {
+    const double per_hole = MsSince(holes_start_) / holes_done;
+    p.set_eta_ms(per_hole * (holes_total - holes_done));
+  }
+  return p;
+}
+
 HoleStatus HoleStatusFromWire(v1::HoleStatus status) {
-  for (HoleStatus s : {HoleStatus::kFilled, HoleStatus::kSkipped,
-                       HoleStatus::kNoTriangulation, HoleStatus::kListed}) {
+  for (HoleStatus s :
+       {HoleStatus::kFilled, HoleStatus::kSkipped, HoleStatus::kNoTriangulation,
+        HoleStatus::kListed, HoleStatus::kStopped}) {
     if (HoleStatusToWire(s) == status) return s;
   }
   return HoleStatus::kFailed;

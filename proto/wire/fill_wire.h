@@ -6,6 +6,7 @@
 #define DOT_PROTO_FILL_WIRE_H_
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -28,6 +29,23 @@ void FillReportToWire(const FillReport& report, const RepairReport& repair,
                       v1::FillReport* out);
 v1::HoleStatus HoleStatusToWire(HoleStatus status);
 v1::Escalation EscalationToWire(Escalation escalation);
+v1::FillPhase FillPhaseToWire(FillPhase phase);
+
+// One fill's progress reports as messages (the server's and dotctl
+// --local's alike): the phase, the holes, the time since `start` and, in
+// the holes phase, the time left at the pace since that phase began.
+// Called one report at a time, as FillProgressFn is.
+class FillProgressClock {
+ public:
+  explicit FillProgressClock(std::chrono::steady_clock::time_point start)
+      : start_(start) {}
+  v1::FillProgress Report(FillPhase phase, int holes_done, int holes_total);
+
+ private:
+  std::chrono::steady_clock::time_point start_, holes_start_;
+  bool in_holes_ = false;
+};
+
 // Back, for clients that print the core's names (an unknown value reads
 // as kFailed / kNone).
 HoleStatus HoleStatusFromWire(v1::HoleStatus status);

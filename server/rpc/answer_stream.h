@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "rpc/answer_writer.h"
 #include "rpc/job.h"
@@ -25,7 +26,17 @@ template <class Base, class Response>
 class AnswerStream : public Base {
  public:
   void OnWriteDone(bool ok) override {
-    if (writer_.WriteDone(ok, job_.get())) WriteNext();
+    if (writer_.WriteDone(ok, job_.get())) {
+      WriteNext();
+      return;
+    }
+    // A forced report that found this write in flight goes now, unless
+    // the computing thread writes a newer one first.
+    std::optional<Response> next = TakePending();
+    if (next && writer_.ClaimProgress(Clock::duration::zero(), true)) {
+      message_ = std::move(*next);
+      Write(false);
+    }
   }
   void OnDone() override {
     // StartWriteAndFinish reports no failed write: ask the context.
@@ -44,8 +55,9 @@ class AnswerStream : public Base {
       : runner_(runner), context_(context) {}
 
   // Once the job is done, with the right to write: the next message of the
-  // answer into `message` (`*last` for the final one), or the status that
-  // ends the call instead.
+  // answer into `message`, or a status (not OK, `*last` unset) that ends the
+  // call instead. `*last` marks the final message; the status returned with
+  // it is the one the call ends with (a partial answer's is not OK).
   virtual grpc::Status NextAnswer(Response* message, bool* last) = 0;
 
   // The job's on_done (on the computing thread).
@@ -53,11 +65,22 @@ class AnswerStream : public Base {
     if (writer_.JobDone()) WriteNext();
   }
   // From the computing thread: writes the progress report `fill` makes,
-  // unless one is in flight or younger than `interval` (`force`: the
-  // interval does not apply).
+  // unless one is in flight or younger than `interval`. A `force`d report
+  // (a new phase, the last hole) ignores the interval and, when a write is
+  // in flight, is kept to go after it (before the answer), unless a newer
+  // report goes first.
   template <class Fill>
   void WriteProgress(Clock::duration interval, bool force, const Fill& fill) {
-    if (!writer_.ClaimProgress(interval, force)) return;
+    if (!writer_.ClaimProgress(interval, force)) {
+      if (force) {
+        std::lock_guard<std::mutex> lock(pending_mu_);
+        pending_.emplace();
+        pending_->set_id(job_->id);
+        fill(&*pending_);
+      }
+      return;
+    }
+    TakePending();  // this report is newer
     message_.Clear();
     message_.set_id(job_->id);
     fill(&message_);
@@ -88,15 +111,27 @@ class AnswerStream : public Base {
   bool finished_ = false;
 
  private:
+  std::optional<Response> TakePending() {
+    std::lock_guard<std::mutex> lock(pending_mu_);
+    std::optional<Response> taken = std::move(pending_);
+    pending_.reset();
+    return taken;
+  }
+
   // Only ever called by whoever holds the (single) right to write.
   void WriteNext() {
     if (writer_.broken()) {
       FinishWith(StoppedStatus(job_->stop));
       return;
     }
+    if (std::optional<Response> last_report = TakePending()) {
+      message_ = std::move(*last_report);  // then the answer
+      Write(false);
+      return;
+    }
     bool last = false;
     const grpc::Status status = NextAnswer(&message_, &last);
-    if (!status.ok()) {
+    if (!status.ok() && !last) {
       FinishWith(status);
       return;
     }
@@ -104,7 +139,7 @@ class AnswerStream : public Base {
       std::lock_guard<std::mutex> lock(mu_);
       if (finished_) return;
       finished_ = true;
-      final_status_ = grpc::Status::OK;
+      final_status_ = status;
     }
     Write(last);
   }
@@ -118,8 +153,10 @@ class AnswerStream : public Base {
   }
 
   AnswerWriter writer_;
-  Response message_;        // the message being written
-  grpc::ByteBuffer bytes_;  // message_, serialized
+  std::mutex pending_mu_;
+  std::optional<Response> pending_;  // a forced report waiting for a write
+  Response message_;                 // the message being written
+  grpc::ByteBuffer bytes_;           // message_, serialized
 };
 
 }  // namespace dot::server

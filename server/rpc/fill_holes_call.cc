@@ -13,15 +13,16 @@ Status FillHolesCall::Configure(const v1::FillOptions& wire,
 }
 
 Status FillHolesCall::Run(PolygonSoup soup, const Control& control,
-                          const HoleProgressFn& on_hole, std::string* log) {
+                          const FillProgressFn& on_progress, std::string* log) {
   // What the log says if the fill stops before it has more to say.
   *log = "received_vertices=" + std::to_string(soup.vertices.size()) +
          " received_faces=" + std::to_string(soup.faces.size());
   const auto sent_vertices = static_cast<int64_t>(soup.vertices.size());
-  result_ = FillSoup(std::move(soup), options_, control, on_hole);
+  result_ = FillSoup(std::move(soup), options_, control, on_progress);
   if (options_.dry_run) {
     result_.fill.mesh = {};  // the report is the answer
-  } else if (result_.fill.status.ok() && answer_ == v1::FILL_ANSWER_PATCHES) {
+  } else if ((result_.fill.status.ok() || result_.fill.partial) &&
+             answer_ == v1::FILL_ANSWER_PATCHES) {
     patches_ = PatchesAsSent(result_, sent_vertices);
     result_.fill.mesh = {};  // the patches are the answer
   }
@@ -31,6 +32,7 @@ Status FillHolesCall::Run(PolygonSoup soup, const Control& control,
            " faces=" + std::to_string(result_.input_faces) +
            " holes=" + std::to_string(r.loops) +
            " filled=" + std::to_string(r.filled) +
+           (r.stopped > 0 ? " stopped=" + std::to_string(r.stopped) : "") +
            " added_faces=" + std::to_string(r.added_faces);
   }
   return result_.fill.status;

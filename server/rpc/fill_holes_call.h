@@ -30,9 +30,12 @@ class FillHolesCall {
   // The fill, on a compute thread: the status of dot::FillSoup. `log`
   // receives the call's log detail (what arrived, then what was filled).
   Status Run(PolygonSoup soup, const Control& control,
-             const HoleProgressFn& on_hole, std::string* log);
-  // After a successful Run: the next message of the answer, tagged `id`;
-  // the last one (done() after it) is the report.
+             const FillProgressFn& on_progress, std::string* log);
+  // Run stopped early but kept what it filled (FillResult::partial): the
+  // answer is still made, and the call ends with Run's status after it.
+  bool partial() const { return result_.fill.partial; }
+  // After a Run that succeeded or is partial: the next message of the
+  // answer, tagged `id`; the last one (done() after it) is the report.
   void Next(const std::string& id, size_t chunk_bytes,
             v1::FillHolesResponse* message);
   bool done() const { return done_; }

@@ -126,15 +126,15 @@ void FillHolesReactor::StartFill() {
   }
   job_->on_done = [this] { JobDone(); };
   const auto fill = [this](Job& job, const Control& control) {
+    wire::FillProgressClock clock(job.arrived);
     return call_.Run(
         std::move(soup_), control,
-        [this, &job](int done, int total) {
-          // The last hole's report is always written: done == total is seen.
-          WriteProgress(kProgressInterval, done == total, [&](auto* m) {
-            m->mutable_progress()->set_holes_done(done);
-            m->mutable_progress()->set_holes_total(total);
-            m->mutable_progress()->set_elapsed_ms(
-                Ms(Clock::now() - job.arrived));
+        [this, &clock](FillPhase phase, int done, int total) {
+          // A new phase, and the last hole, are always reported.
+          const bool force =
+              phase != FillPhase::kHoles || done == total || done == 0;
+          WriteProgress(kProgressInterval, force, [&](auto* m) {
+            *m->mutable_progress() = clock.Report(phase, done, total);
           });
         },
         &job.log_detail);
@@ -149,10 +149,16 @@ grpc::Status FillHolesReactor::NextAnswer(v1::FillHolesResponse* message,
                                           bool* last) {
   const grpc::Status status =
       JobStatus(*job_, runner_->options().max_compute_ms);
-  if (!status.ok()) return status;
+  // A fill stopped by a limit or a drain answers what it kept, then its
+  // status; a client that left or cancelled is not written to.
+  const StopReason stop = job_->stop;
+  const bool keep = call_.partial() && stop != StopReason::kClientCancel &&
+                    stop != StopReason::kClientDeadline &&
+                    stop != StopReason::kClientGone;
+  if (!status.ok() && !keep) return status;
   call_.Next(job_->id, runner_->options().chunk_bytes, message);
   *last = call_.done();
-  return grpc::Status::OK;
+  return *last ? status : grpc::Status::OK;
 }
 
 void FillHolesReactor::OnCancel() {

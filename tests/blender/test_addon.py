@@ -712,6 +712,46 @@ def test_background_job_and_cancel(address):
         slow.error
 
 
+def test_fill_job_reports_phases_and_keeps_a_stopped_fill(address):
+    """The status bar's text per phase; a fill stopped by its time budget
+    hands back the holes it finished, with the stop, not an error."""
+    import dot
+    from dot import operators
+    P = dot.connection.dot_client.FillProgress
+    assert operators.fill_status(P(phase="loops")) == "finding the holes"
+    assert operators.fill_status(P(phase="holes", holes_done=3,
+                                   holes_total=10, eta_ms=2500)) == \
+        "3 of 10 holes, about 3 s left"
+    client = dot.connection.client(prefs())
+    squares = [(i, i + 16, j, j + 16) for i in range(6, 290, 29)
+               for j in range(6, 290, 29)]
+    v, f = shapes.grid_with_holes(300, squares)
+    v[:, 2] = [3 * math.sin(x / 7) * math.cos(y / 9) for x, y, _ in v]
+    seen = []
+    client.fill_patches(v, f, skip_longest=True, progress=seen.append)
+    start = next(p.elapsed_ms for p in seen if p.phase == "holes")
+    end = max(p.elapsed_ms for p in seen)
+    stopped = []
+    for fraction in (0.3, 0.5, 0.7):
+        options = dot.connection.dot_client.FillOptions(
+            skip_longest=True,
+            time_budget_ms=int(start + fraction * (end - start)) + 1)
+        job = operators.Job(operators._fill_work(v, f, options))
+        job.run(client)  # what the worker thread runs
+        if job.stopped is not None:
+            stopped.append(job)
+        else:
+            assert job.error is None or \
+                job.error.code.name == "DEADLINE_EXCEEDED", job.error
+    assert stopped, "no budget ended inside the holes phase"
+    for job in stopped:
+        assert job.error is None
+        report = job.result.report
+        assert report.stopped > 0
+        assert len(job.result.patches) == report.filled
+        assert job.stopped.code.name == "DEADLINE_EXCEEDED"
+
+
 def main():
     # Install the zip the build made and enable it, as a user would.
     assert os.path.exists(ARGS.addon_zip), ARGS.addon_zip

@@ -264,5 +264,63 @@ TEST_F(FillHolesCliTest, JsonStdinStdoutAndExitCodes) {
       << r.out;
 }
 
+TEST_F(FillHolesCliTest, AFillThatRunsOutOfTimeWritesWhatItFilledAndExits5) {
+  ASSERT_TRUE(
+      WriteMeshFile(Path("many.off"), testing::HoleyTorus(600, 300, 80, 1000))
+          .ok());
+  auto r = Dotctl("fill-holes --local --json " + Path("many.off") + " -o " +
+                  Path("full.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const size_t at = r.out.find("\"latency_ms\":");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double full_ms = std::stod(r.out.substr(at + 13));
+  // Budgets that end while the holes are filled (timing decides which do:
+  // at least one must).
+  int stopped = 0;
+  for (double fraction : {0.6, 0.75, 0.9}) {
+    const std::string budget =
+        std::to_string(static_cast<int>(fraction * full_ms));
+    r = Dotctl("fill-holes --local " + Path("many.off") + " --time-budget-ms " +
+               budget + " -o " + Path("part.ply"));
+    if (r.code != 5) {
+      EXPECT_TRUE(r.code == 0 || r.code == 1) << r.out;
+      continue;
+    }
+    ++stopped;
+    EXPECT_NE(r.out.find("stopped early"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--time-budget-ms " + budget), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("holes not filled: the fill stopped before them"),
+              std::string::npos)
+        << r.out;
+    // What was written is a valid mesh with fewer holes.
+    MeshData part;
+    ASSERT_TRUE(ReadMeshFile(Path("part.ply"), &part).ok());
+    std::vector<HoleLoop> loops;
+    ASSERT_TRUE(FindHoleLoops(part, &loops).ok());
+    const size_t said = r.out.find(" of 80 holes filled");
+    ASSERT_NE(said, std::string::npos) << r.out;
+    const int filled = std::stoi(r.out.substr(r.out.rfind(':', said) + 2));
+    EXPECT_EQ(loops.size(), 80u - filled) << r.out;
+    // --json names the outcome.
+    r = Dotctl("fill-holes --local --json " + Path("many.off") +
+               " --time-budget-ms " + budget + " -o " + Path("part.ply"));
+    if (r.code == 5) {
+      EXPECT_NE(r.out.find("\"outcome\":\"partial\""), std::string::npos)
+          << r.out;
+      EXPECT_NE(r.out.find("\"rpc_status\":\"DEADLINE_EXCEEDED\""),
+                std::string::npos)
+          << r.out;
+      EXPECT_NE(r.out.find("\"stopped\":"), std::string::npos) << r.out;
+    }
+  }
+  EXPECT_GT(stopped, 0) << "no budget ended while the holes were filled";
+  // --dry-run writes nothing: an -o with it is refused, not ignored.
+  r = Dotctl("fill-holes --local --dry-run " + Path("many.off") + " -o " +
+             Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--dry-run writes no mesh"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace dot

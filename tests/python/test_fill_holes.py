@@ -165,7 +165,8 @@ def test_hole_status_and_escalation_names(client):
                      "HOLE_STATUS_SKIPPED": "skipped",
                      "HOLE_STATUS_NO_TRIANGULATION": "no_triangulation",
                      "HOLE_STATUS_FAILED": "failed",
-                     "HOLE_STATUS_LISTED": "listed"}
+                     "HOLE_STATUS_LISTED": "listed",
+                     "HOLE_STATUS_STOPPED": "stopped"}
     names = {pb.Escalation.Name(x): dot_client.HoleReport.from_proto(
         pb.HoleReport(escalation=x)).escalation for x in pb.Escalation.values()}
     assert names == {"ESCALATION_NONE": "",
@@ -303,3 +304,60 @@ def test_timeout_and_cancel(server, client):
     assert server.alive()
     small_v, small_f = grid_with_hole(10)
     assert client.fill_holes(small_v, small_f, skip_longest=True).report.filled
+
+
+def _holey_grid():
+    """A wavy 300 x 300 grid with 100 square holes of 64 edges, and its
+    rim."""
+    squares = [(i, i + 16, j, j + 16) for i in range(6, 290, 29)
+               for j in range(6, 290, 29)]
+    v, f = grid_with_holes(300, squares)
+    v[:, 2] = 3 * np.sin(v[:, 0] / 7) * np.cos(v[:, 1] / 9)
+    return v, f
+
+
+def test_progress_reports_the_phases_in_order(client):
+    v, f = _holey_grid()
+    seen = []
+    r = client.fill_holes(v, f, skip_longest=True, stage="triangulate",
+                          progress=seen.append)
+    assert r.report.filled == 100
+    order = ["repair", "loops", "holes", "merge"]
+    phases = [order.index(p.phase) for p in seen]
+    assert phases == sorted(phases) and 2 in phases
+    holes = [p for p in seen if p.phase == "holes"]
+    assert all(p.holes_total == 100 for p in holes)
+    assert all(p.eta_ms >= 0 for p in holes)
+    assert [p.elapsed_ms for p in seen] == sorted(p.elapsed_ms for p in seen)
+
+
+def test_a_stopped_fill_keeps_the_holes_it_finished(client):
+    v, f = _holey_grid()
+    seen = []
+    client.fill_holes(v, f, skip_longest=True, progress=seen.append)
+    start = next(p.elapsed_ms for p in seen if p.phase == "holes")
+    end = max(p.elapsed_ms for p in seen)
+    # Budgets that end inside the holes phase (timing decides which do:
+    # at least one must).
+    stops = []
+    for fraction in (0.3, 0.5, 0.7):
+        budget = int(start + fraction * (end - start)) + 1
+        try:
+            client.fill_holes(v, f, skip_longest=True, time_budget_ms=budget)
+        except dot_client.FillStopped as stop:
+            stops.append(stop)
+        except dot_client.DotError as e:  # stopped before the holes
+            assert e.code == grpc.StatusCode.DEADLINE_EXCEEDED, e
+    assert stops, "no budget ended inside the holes phase"
+    for stop in stops:
+        assert stop.code == grpc.StatusCode.DEADLINE_EXCEEDED
+        assert "time_budget_ms" in stop.message
+        r = stop.result
+        rep = r.report
+        assert rep.stopped > 0 and not rep.closed
+        assert rep.filled + rep.stopped == 100 and rep.skipped == 1
+        assert sum(h.status == "stopped" for h in rep.holes) == rep.stopped
+        assert len(r.vertices) == rep.input_vertices + rep.added_vertices
+        assert len(r.faces) == rep.input_faces + rep.added_faces
+        # Every hole not filled keeps its 64 border edges; the rim its own.
+        assert len(border_edges(r.faces)) == 4 * 299 + 64 * rep.stopped

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <future>
 #include <thread>
 
 #include "fill_call.h"
@@ -394,6 +395,60 @@ TEST(FillHolesServiceTest, StoppedCallsAreAnsweredAndCountedByTheirReason) {
   }
   EXPECT_NE(scraped.find(want_deadline), std::string::npos) << scraped;
   EXPECT_NE(scraped.find(want_budget), std::string::npos) << scraped;
+}
+
+TEST(FillHolesServiceTest, ADrainMidFillAnswersTheHolesFinishedThenStops) {
+  auto s = StartServer(LoopbackConfig());
+  const MeshData m = testing::HoleyTorus(600, 300, 80, 1000);
+  ASSERT_FALSE(m.triangles.empty());
+  std::promise<void> holes_under_way;
+  bool signalled = false;
+  client::FillOutcome o;
+  std::thread call([&] {
+    o = client::FillRemote(
+        *s.stub, "drained", {}, ToSoup(m), 120, [&](const v1::FillProgress& p) {
+          if (!signalled && p.phase() == v1::FILL_PHASE_HOLES &&
+              p.holes_done() > 0) {
+            signalled = true;
+            holes_under_way.set_value();
+          }
+        });
+    if (!signalled) holes_under_way.set_value();  // ends the wait below
+  });
+  holes_under_way.get_future().wait();
+  s.server->Drain(std::chrono::milliseconds(0));
+  call.join();
+  ASSERT_TRUE(signalled) << "the fill ended before a hole was reported";
+  EXPECT_EQ(o.status.error_code(), grpc::StatusCode::UNAVAILABLE)
+      << o.status.error_message();
+  ASSERT_TRUE(o.partial) << o.status.error_message();
+  const v1::FillReport& r = o.report;
+  EXPECT_GE(r.filled(), 1u);
+  EXPECT_GE(r.stopped(), 1u);
+  EXPECT_EQ(r.filled() + r.stopped() + r.unfilled(), r.loops());
+  // What came back is exactly a fill of the finished holes alone (each
+  // hole's patch depends on nothing else), which the core's tests hold to
+  // every promise; and its new faces intersect nothing.
+  FillOptions finished;
+  for (const v1::HoleReport& h : r.holes()) {
+    if (h.status() == v1::HOLE_STATUS_FILLED) {
+      finished.selection.ids.push_back(h.id());
+    } else {
+      EXPECT_EQ(h.status(), v1::HOLE_STATUS_STOPPED) << h.reason();
+      EXPECT_TRUE(h.reason().rfind("not started: ", 0) == 0 ||
+                  h.reason().rfind("stopped: ", 0) == 0)
+          << h.reason();
+    }
+  }
+  const FillResult alone = FillHoles(m, finished);
+  ASSERT_TRUE(alone.status.ok()) << alone.status.message;
+  EXPECT_EQ(o.mesh.vertices, alone.mesh.vertices);
+  EXPECT_EQ(o.mesh.triangles, alone.mesh.triangles);
+  std::vector<Triangle> new_first(o.mesh.triangles.begin() + m.triangles.size(),
+                                  o.mesh.triangles.end());
+  const size_t fresh = new_first.size();
+  new_first.insert(new_first.end(), m.triangles.begin(), m.triangles.end());
+  EXPECT_EQ(CountIntersectingPairs(o.mesh.vertices, new_first, fresh), 0);
 }
 
 }  // namespace

@@ -122,6 +122,7 @@ class Job:
         self.fraction = 0.0
         self.text = "starting"
         self.result = None
+        self.stopped = None  # dot_client.FillStopped: result is partial
         self.error = None
         self.done = False
 
@@ -130,7 +131,8 @@ class Job:
 
     def run(self, client):
         try:
-            self.result = self.work(client, self.token, self.progress)
+            self.result, self.stopped = run_work(self.work, client,
+                                                 self.token, self.progress)
         except BaseException as e:  # handed to the main thread
             self.error = e
         finally:
@@ -139,6 +141,15 @@ class Job:
     def start(self, client):
         threading.Thread(target=self.run, args=(client,), daemon=True,
                          name="dot-job").start()
+
+
+def run_work(work, client, token, progress):
+    """(result, None), or (the partial result, the FillStopped) when a fill
+    stopped early but kept the holes it finished."""
+    try:
+        return work(client, token, progress), None
+    except dot_client.FillStopped as stopped:
+        return stopped.result, stopped
 
 
 class DotOperator:
@@ -168,11 +179,12 @@ class DotOperator:
             wm = context.window_manager
             wm.progress_begin(0, 100)
             try:
-                payload = work(client, None,
-                               lambda f, text: wm.progress_update(int(100 * f)))
+                payload, stopped = run_work(
+                    work, client, None,
+                    lambda f, text: wm.progress_update(int(100 * f)))
             finally:
                 wm.progress_end()
-            return self.finish(context, state, payload)
+            return self.finish_stopped(context, state, payload, stopped)
         except Exception as e:
             return self.fail(e)
 
@@ -228,9 +240,20 @@ class DotOperator:
                 return {'CANCELLED'}
             return self.fail(job.error)
         try:
-            return self.finish(context, self._state, job.result)
+            return self.finish_stopped(context, self._state, job.result,
+                                       job.stopped)
         except Exception as e:
             return self.fail(e)
+
+    def finish_stopped(self, context, state, payload, stopped):
+        """finish, then a warning when the work stopped early and only
+        part of it is in the mesh."""
+        result = self.finish(context, state, payload)
+        if stopped is not None:
+            self.report({'WARNING'}, "DOT: stopped early, "
+                        f"{payload.report.stopped} holes not filled: "
+                        f"{describe(stopped)}")
+        return result
 
 
 def _triangulate_work(loops, normals, options):
@@ -253,16 +276,30 @@ def _fill_work(vertices, faces, options):
         return client.fill_patches(
             vertices, faces, options=options, cancel=cancel,
             progress=lambda p: progress(
-                p.holes_done / max(1, p.holes_total),
-                f"{p.holes_done} of {p.holes_total} holes"))
+                p.holes_done / max(1, p.holes_total), fill_status(p)))
     return work
+
+
+_PHASES = {"repair": "repairing the mesh", "loops": "finding the holes",
+           "merge": "merging the patches"}
+
+
+def fill_status(p):
+    """The status bar's text for a dot_client.FillProgress."""
+    if p.phase != "holes":
+        return _PHASES.get(p.phase, "working")
+    text = f"{p.holes_done} of {p.holes_total} holes"
+    if p.eta_ms > 0:
+        text += f", about {int(p.eta_ms / 1000) + 1} s left"
+    return text
 
 
 def _hole_problems(report):
     """A line per hole that was selected but stays open."""
     return [f"hole {h.id} ({h.boundary_vertices} edges): {h.status}"
             + (f": {h.reason}" if h.reason else "")
-            for h in report.holes if h.status not in ("filled", "skipped")]
+            for h in report.holes
+            if h.status not in ("filled", "skipped", "stopped")]
 
 
 def _edit_bmesh(context):

@@ -20,10 +20,11 @@ Names exported here are the API other tools script against: :class:`Client`
 :data:`WEIGHT_PRESETS`), the results (:class:`Result`, :class:`FillResult`,
 :class:`FillPatches`, :class:`HolePatch`, :class:`Summary`,
 :class:`FillReport`, ...), the errors (:class:`DotError` and its
-subclasses :class:`InvalidInput`, :class:`NoTriangulation`) and
+subclasses :class:`InvalidInput`, :class:`NoTriangulation`,
+:class:`FillStopped`, which carries a stopped fill's partial result) and
 :class:`CancelToken`. The wire helpers live in :mod:`dot_client.wire`.
 """
-from ._errors import DotError, InvalidInput, NoTriangulation
+from ._errors import DotError, FillStopped, InvalidInput, NoTriangulation
 from ._types import (WEIGHT_PRESETS, FillOptions, FillPatches, FillProgress,
                      FillReport, FillResult, HolePatch, HoleReport, Limits,
                      Progress, RepairReport, Result, ServerInfo, Stats,
@@ -34,7 +35,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "CancelToken", "Client", "DotError", "FillOptions", "FillPatches",
-    "FillProgress", "FillReport", "FillResult", "HolePatch", "HoleReport",
+    "FillProgress", "FillStopped", "FillReport", "FillResult", "HolePatch", "HoleReport",
     "InvalidInput", "Limits", "NoTriangulation", "Progress", "RepairReport",
     "Result", "ServerInfo", "Stats", "Summary", "TriangulateOptions",
     "WEIGHT_PRESETS", "WeightPreset", "Weights",

@@ -488,11 +488,16 @@ class Client:
         output's first V vertices and, except faces listed in a hole's
         ``split_faces``, its first faces are the input's).
 
-        ``progress(FillProgress)`` is called as holes are done; an
-        exception it raises cancels the call and propagates.
+        ``progress(FillProgress)`` is called as the server's phases start
+        (repair, loops, holes, merge) and as holes are done, with an
+        estimate of the time left; an exception it raises cancels the call
+        and propagates.
 
         Returns a :class:`FillResult` (vertices, faces, report); holes that
-        stay open are reported in ``report.holes``, not raised.
+        stay open are reported in ``report.holes``, not raised. A fill that
+        stops early (``time_budget_ms`` or the server's limit passes, the
+        server drains) raises :class:`FillStopped`, whose ``result`` holds
+        every hole finished before the stop.
         """
         o = FillOptions.merged(
             options, stage=stage, max_hole_edges=max_hole_edges,

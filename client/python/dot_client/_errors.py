@@ -58,6 +58,31 @@ class NoTriangulation(DotError):
         self.summary = summary
 
 
+class FillStopped(DotError):
+    """A fill stopped early (its time budget or the server's limit passed,
+    the server drained) but kept its work: ``result`` is the whole answer,
+    a :class:`FillResult` or :class:`FillPatches` holding every hole
+    finished before the stop, in a valid mesh; the others are reported
+    ``"stopped"`` (``result.report.stopped`` of them). ``code`` and
+    ``message`` say why it stopped (``DEADLINE_EXCEEDED``,
+    ``UNAVAILABLE``, ...), as for any :class:`DotError`. Catch it to keep
+    the partial result::
+
+        try:
+            result = client.fill_holes(v, f, time_budget_ms=10_000)
+        except dot_client.FillStopped as stop:
+            result = stop.result  # the holes filled in 10 s
+    """
+
+    def __init__(self, code: grpc.StatusCode, message: str,
+                 result: Any) -> None:
+        super().__init__(code, message)
+        self.result = result
+
+    def __reduce__(self) -> Any:
+        return (FillStopped, (self.code, self.message, self.result))
+
+
 def from_rpc_error(error: grpc.RpcError) -> DotError:
     """The DotError of a failed gRPC call."""
     code = error.code() if hasattr(error, "code") else None

@@ -216,8 +216,10 @@ class RepairReport(_Plain):
 @dataclass
 class HoleReport(_Plain):
     """One hole: ``status`` is ``"filled"``, ``"skipped"``,
-    ``"no_triangulation"``, ``"failed"`` (``reason`` says why) or, from
-    :meth:`Client.list_holes`, ``"listed"`` (selected, not filled);
+    ``"no_triangulation"``, ``"failed"`` (``reason`` says why),
+    ``"stopped"`` (the fill stopped before it was done: see
+    :class:`FillStopped`) or, from :meth:`Client.list_holes`,
+    ``"listed"`` (selected, not filled);
     ``diameter`` (bounding-box diagonal), ``perimeter`` and ``centroid``
     (length-weighted, x y z) give the loop's size and place;
     ``escalation``, the search step that made the patch, is
@@ -278,6 +280,7 @@ class FillReport(_Plain):
     input_vertices: int = 0
     input_faces: int = 0
     listed: int = 0  # list_holes: selected, not filled
+    stopped: int = 0  # the fill stopped before these (see FillStopped)
 
     @classmethod
     def from_proto(cls, m: Any) -> "FillReport":
@@ -393,14 +396,21 @@ class FillPatches(_Plain):
 
 @dataclass
 class FillProgress(_Plain):
-    """Holes done so far out of all holes being filled."""
+    """Where a fill is: ``phase`` is ``"repair"``, ``"loops"`` (finding
+    the holes), ``"holes"`` (``holes_done`` of ``holes_total`` filled;
+    ``eta_ms`` the time the rest should take at the pace so far, 0 before
+    the first hole) or ``"merge"``, on the server; ``elapsed_ms`` since the
+    call arrived. (The wire carries ``phase`` as the enum ``FillPhase``.)"""
     holes_done: int = 0
     holes_total: int = 0
     elapsed_ms: float = 0.0
+    phase: str = ""
+    eta_ms: float = 0.0
 
     @classmethod
     def from_proto(cls, m: Any) -> "FillProgress":
-        return _scalars(cls, m)
+        return _scalars(cls, m, phase=_enum_name(m.phase, pb.FillPhase,
+                                                 "FILL_PHASE_", zero=""))
 
 
 @dataclass

@@ -22,7 +22,7 @@ from typing import (Any, BinaryIO, Callable, Dict, Iterable, Iterator, List,
 import grpc
 import numpy as np
 
-from ._errors import DotError
+from ._errors import DotError, FillStopped, from_rpc_error
 from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._types import (FillPatches, FillProgress, FillReport, FillResult,
                      HolePatch, Progress, Result, Summary)
@@ -255,16 +255,30 @@ class PatchReader:
 def _read_fill(responses: Iterable[Any],
                on_progress: Optional[Callable[[FillProgress], None]],
                answer: str,
-               sent_vertices: Optional[int] = None) -> Tuple[Any, Any]:
+               sent_vertices: Optional[int] = None
+               ) -> Tuple[Any, Any, Optional[grpc.RpcError]]:
     """FillRemote's loop over a FillHoles response stream: the report
-    message and the mesh (``answer`` "mesh": vertices, faces) or the
-    patches; raises :class:`DotError` (``INTERNAL``) with dotctl's
-    messages."""
+    message, the mesh (``answer`` "mesh": vertices, faces) or the
+    patches, and the error the stream ended with when the fill stopped
+    early but answered whole (a report with ``stopped`` holes), else None;
+    raises :class:`DotError` (``INTERNAL``) with dotctl's messages."""
     assembler = MeshAssembler()
     patches = PatchReader(sent_vertices)
     report = None
     assembled: Optional[str] = None
-    for message in responses:
+    stopped: Optional[grpc.RpcError] = None
+    messages = iter(responses)
+    while True:
+        try:
+            message = next(messages)
+        except StopIteration:
+            break
+        except grpc.RpcError as e:
+            # A fill that stopped early answers whole, then says why.
+            if report is None or report.stopped == 0:
+                raise
+            stopped = e
+            break
         kind = message.WhichOneof("payload")
         if kind == "progress":
             if on_progress is not None:
@@ -299,7 +313,15 @@ def _read_fill(responses: Iterable[Any],
     if assembled is not None:
         raise DotError(grpc.StatusCode.INTERNAL,
                        f"bad mesh from the server: {assembled}")
-    return report, out
+    return report, out, stopped
+
+
+def _raise_stopped(stopped: Optional[grpc.RpcError], result: Any) -> None:
+    """FillStopped with `result` when the stream ended with a stop."""
+    if stopped is None:
+        return
+    error = from_rpc_error(stopped)
+    raise FillStopped(error.code, error.message, result)
 
 
 def assemble_fill(
@@ -307,14 +329,17 @@ def assemble_fill(
         on_progress: Optional[Callable[[FillProgress], None]] = None
 ) -> FillResult:
     """The FillResult of a FillHoles response stream (answer
-    ``FILL_ANSWER_MESH``) that ended OK.
+    ``FILL_ANSWER_MESH``) that ended OK; raises :class:`FillStopped`
+    with it when the fill stopped early but answered what it had.
 
     Raises :class:`DotError` (``INTERNAL``) when the report is missing or
     the mesh does not add up, with dotctl's messages.
     """
-    report, mesh = _read_fill(responses, on_progress, "mesh")
-    return FillResult(vertices=mesh[0], faces=mesh[1],
-                      report=FillReport.from_proto(report))
+    report, mesh, stopped = _read_fill(responses, on_progress, "mesh")
+    result = FillResult(vertices=mesh[0], faces=mesh[1],
+                        report=FillReport.from_proto(report))
+    _raise_stopped(stopped, result)
+    return result
 
 
 def assemble_patches(
@@ -323,13 +348,16 @@ def assemble_patches(
         sent_vertices: Optional[int] = None
 ) -> FillPatches:
     """The FillPatches of a FillHoles response stream (answer
-    ``FILL_ANSWER_PATCHES``) that ended OK: its HolePatch messages
+    ``FILL_ANSWER_PATCHES``) that ended OK (or :class:`FillStopped` with
+    it, as :func:`assemble_fill`): its HolePatch messages
     reassembled by :class:`PatchReader` (the first patch's vertices must
     follow the upload's ``sent_vertices``, when given). Raises
     :class:`DotError` (``INTERNAL``) as :func:`assemble_fill` does."""
-    report, patches = _read_fill(responses, on_progress, "patches",
-                                 sent_vertices)
-    return FillPatches(patches=patches, report=FillReport.from_proto(report))
+    report, patches, stopped = _read_fill(responses, on_progress, "patches",
+                                          sent_vertices)
+    result = FillPatches(patches=patches, report=FillReport.from_proto(report))
+    _raise_stopped(stopped, result)
+    return result
 
 
 FaceInput = Union[np.ndarray, Sequence[Sequence[int]]]

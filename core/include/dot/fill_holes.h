@@ -131,7 +131,16 @@ struct FillOptions {
 };
 
 // kListed: selected but not filled, because FillOptions::dry_run.
-enum class HoleStatus { kFilled, kSkipped, kNoTriangulation, kFailed, kListed };
+// kStopped: selected, but the fill stopped (cancel, deadline) before this
+// hole was finished; its reason says whether it had started.
+enum class HoleStatus {
+  kFilled,
+  kSkipped,
+  kNoTriangulation,
+  kFailed,
+  kListed,
+  kStopped
+};
 std::string_view HoleStatusName(HoleStatus s);  // "filled", ...
 
 // Which search step produced a hole's patch.
@@ -164,7 +173,8 @@ struct HoleReport {
 struct FillReport {
   std::vector<HoleReport> holes;  // one per loop, by id
   int32_t loops = 0, filled = 0, skipped = 0, unfilled = 0;
-  int32_t listed = 0;  // dry_run: selected, not filled
+  int32_t listed = 0;   // dry_run: selected, not filled
+  int32_t stopped = 0;  // kStopped: the fill stopped before them
   int32_t added_vertices = 0, added_faces = 0;
   bool closed = false;  // no border edge left
   double total_ms = 0;
@@ -188,8 +198,16 @@ struct FilledHole {
   HolePatch patch;
 };
 
+// `status` is kOk when every selected hole was tried, even when some stay
+// open (see report). When the fill stops early (cancel, deadline, an
+// error of one hole) after the holes were found, nothing done is thrown
+// away: `partial` is set, status says why it stopped, and mesh, report and
+// patches hold every hole finished before the stop, in a valid mesh; the
+// others are reported kStopped. Not OK and not partial: nothing to keep
+// (the options, the mesh, or a stop before the holes were found).
 struct FillResult {
-  Status status;  // kOk even when some holes stay open: see report
+  Status status;
+  bool partial = false;
   MeshData mesh;  // input vertices first, unchanged; then new ones
   FillReport report;
   // What is new in `mesh`, hole by hole (in merge order, which is id
@@ -233,14 +251,23 @@ Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
 // threads); FillHoles and FillSoup refuse such options with it.
 Status CheckFillOptions(const FillOptions& options);
 
-// Control's cancel and deadline are honoured in every stage; its progress
-// callback is not used (holes run at once): `on_hole`, when given, is called
-// after each selected hole with (holes done, holes selected), from the
-// computing threads, one call at a time.
-using HoleProgressFn = std::function<void(int done, int total)>;
+// The phases of a fill, in order, as progress reports them.
+enum class FillPhase { kRepair, kLoops, kHoles, kMerge };
+std::string_view FillPhaseName(FillPhase p);  // "repair", "loops", ...
+
+// Progress of a fill: called as each phase starts and, in kHoles, after
+// each selected hole, with (holes done, holes selected; 0 before kHoles).
+// From the computing threads, one call at a time.
+using FillProgressFn =
+    std::function<void(FillPhase phase, int holes_done, int holes_total)>;
+
+// Control's cancel and deadline are honoured in every stage up to the
+// merge, which is bounded by the patches made and always runs, so that a
+// stop keeps them (FillResult::partial); its progress callback is not used
+// (holes run at once): `on_progress` reports the phases and holes.
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options = {},
                      const Control& control = {},
-                     const HoleProgressFn& on_hole = nullptr);
+                     const FillProgressFn& on_progress = nullptr);
 
 }  // namespace dot
 

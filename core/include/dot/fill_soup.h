@@ -32,10 +32,12 @@ struct SoupFillResult {
 // moves its soup in holds one copy of the mesh, not two. Options are
 // checked (CheckFillOptions) before any work; selection.through_vertices
 // are soup ids (mapped through the repair); `control`'s cancel and deadline
-// hold in every step; `on_hole` as in FillHoles.
+// hold in every step, and a stop after the holes were found keeps what
+// was filled (FillResult::partial); `on_progress` as in FillHoles, from
+// the repair on.
 SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options = {},
                         const Control& control = {},
-                        const HoleProgressFn& on_hole = nullptr);
+                        const FillProgressFn& on_progress = nullptr);
 
 // A filled hole in the ids of the soup as it was sent, for a caller that
 // keeps its mesh and adds only what is new (the FillHoles RPC's patches

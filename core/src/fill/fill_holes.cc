@@ -152,8 +152,21 @@ bool AllFinite(const std::vector<Vec3>& points) {
 struct HoleWork {
   HolePatch patch;
   HoleReport report;
-  Status status;  // cancel / deadline / resource: stops the whole fill
+  Status status;         // cancel / deadline / resource: stops the fill
+  bool started = false;  // the stop came after its work began
 };
+
+// Why a hole was stopped, as its reason says it.
+std::string StopCause(const Status& s) {
+  switch (s.code) {
+    case StatusCode::kCancelled:
+      return "the fill was cancelled";
+    case StatusCode::kDeadlineExceeded:
+      return "the fill ran out of time";
+    default:
+      return s.message;
+  }
+}
 
 void FillOne(const MeshData& mesh, const MeshTopology& topo,
              const HoleLoop& loop, const FillOptions& options,
@@ -165,6 +178,7 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     w->status = ticker.status();
     return;
   }
+  w->started = true;
   auto t0 = Clock::now();
   Status s = TriangulateHole(mesh, topo, loop, options, control, first_new,
                              &w->patch, &r);
@@ -262,13 +276,14 @@ struct Merged {
 // pieces appended. Refused, with the reason in `refused`, when the hole
 // would split a face another hole split, reuse an edge of another hole's
 // patch (two loops through the same vertices) or intersect another hole's
-// patch. Not OK only when `control` stops the check.
-Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
-             Merged* merged, FillResult* out, std::string* refused) {
+// patch. Not interrupted: its work is bounded by the patch and the merged
+// patches its box meets, and a stopped fill keeps what it merges.
+void Merge(const MeshData& input, const HoleWork& w, Merged* merged,
+           FillResult* out, std::string* refused) {
   for (int32_t f : w.patch.split_faces) {
     if (merged->split[f]) {
       *refused = "a face it splits was split by another hole";
-      return OkStatus();
+      return;
     }
   }
   const auto first_new = static_cast<int32_t>(input.vertices.size());
@@ -288,7 +303,7 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
       if (merged->edges.count(UndirectedEdgeKey(t[k], t[(k + 1) % 3]))) {
         *refused = "its patch would share edge " + std::to_string(t[k]) + "-" +
                    std::to_string(t[(k + 1) % 3]) + " with another hole's";
-        return OkStatus();
+        return;
       }
     }
   }
@@ -314,19 +329,17 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
   }
   if (check.size() > fresh.size()) {
     // Pairs within the hole were checked already: count only the others.
+    const Control unbounded;
     int64_t with_others = 0, within = 0;
-    Status s =
-        CountPairsAmong(point, check, fresh.size(), control, &with_others);
-    if (s.ok())
-      s = CountPairsAmong(point, fresh, fresh.size(), control, &within);
-    if (!s.ok()) return s;
+    CountPairsAmong(point, check, fresh.size(), unbounded, &with_others);
+    CountPairsAmong(point, fresh, fresh.size(), unbounded, &within);
     const int64_t pairs = with_others - within;
     if (pairs > 0) {
       out->mesh.vertices.resize(out->mesh.vertices.size() -
                                 w.patch.new_vertices.size());
       *refused = "its patch intersects another hole's (" +
                  std::to_string(pairs) + " pairs of faces)";
-      return OkStatus();
+      return;
     }
   }
   for (size_t k = 0; k < w.patch.split_faces.size(); ++k) {
@@ -360,11 +373,12 @@ Status Merge(const MeshData& input, const HoleWork& w, const Control& control,
     }
     merged->faces.push_back(t);
   }
-  return OkStatus();
 }
 
-// Whether every edge has two faces; false also when `ticker` stops the run.
-bool Closed(const std::vector<Triangle>& triangles, RunTicker& ticker) {
+// Whether every edge has two faces.
+bool Closed(const std::vector<Triangle>& triangles) {
+  const Control unbounded;
+  RunTicker ticker(unbounded, "the closed check");
   EdgeIndex index;
   if (!BuildEdgeIndex(triangles, ticker, &index)) return false;
   bool closed = true;
@@ -420,11 +434,13 @@ Status CheckFillOptions(const FillOptions& o) {
 }
 
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
-                     const Control& control, const HoleProgressFn& on_hole) {
+                     const Control& control,
+                     const FillProgressFn& on_progress) {
   const auto t_start = Clock::now();
   FillResult out;
   out.status = CheckFillOptions(options);
   if (!out.status.ok()) return out;
+  if (on_progress) on_progress(FillPhase::kLoops, 0, 0);
   RunTicker ticker(control, "the check of the mesh");
   out.status = CheckMesh(mesh, &ticker);
   if (!out.status.ok()) return out;
@@ -435,10 +451,6 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
   out.status = Select(loops, options.selection, &skip);
   if (!out.status.ok()) return out;
   RunTicker between(control, "hole filling");
-  if (!between.Poll()) {
-    out.status = between.status();
-    return out;
-  }
   std::vector<HoleWork> work(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) {
     HoleReport& r = work[i].report;
@@ -462,58 +474,62 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
     out.report.total_ms = MsSince(t_start);
     return out;
   }
-  const auto topo = BuildMeshTopology(mesh);
-  if (!between.Poll()) {
-    out.status = between.status();
-    return out;
-  }
-  // The per-hole calls report no progress of their own (they run at once).
-  Control hole_control = control;
-  hole_control.progress = nullptr;
-  const int threads =
-      options.threads > 0
-          ? options.threads
-          : static_cast<int>(std::thread::hardware_concurrency());
   const int selected =
       static_cast<int>(std::count(skip.begin(), skip.end(), std::string()));
-  std::mutex progress_mu;
-  int done = 0;
-  tbb::task_arena arena(std::max(1, threads));
-  arena.execute([&] {
-    tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
-      if (!skip[i].empty()) return;
-      FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
-      if (on_hole) {
-        std::lock_guard<std::mutex> lock(progress_mu);
-        on_hole(++done, selected);
-      }
+  // A stop before the holes run leaves every selected hole not started.
+  std::shared_ptr<const MeshTopology> topo;
+  if (between.Poll()) topo = BuildMeshTopology(mesh);
+  if (topo && between.Poll()) {
+    if (on_progress) on_progress(FillPhase::kHoles, 0, selected);
+    // The per-hole calls report no progress of their own (they run at once).
+    Control hole_control = control;
+    hole_control.progress = nullptr;
+    const int threads =
+        options.threads > 0
+            ? options.threads
+            : static_cast<int>(std::thread::hardware_concurrency());
+    std::mutex progress_mu;
+    int done = 0;
+    tbb::task_arena arena(std::max(1, threads));
+    arena.execute([&] {
+      tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
+        if (!skip[i].empty()) return;
+        FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
+        if (on_progress) {
+          std::lock_guard<std::mutex> lock(progress_mu);
+          on_progress(FillPhase::kHoles, ++done, selected);
+        }
+      });
     });
-  });
+  } else {
+    for (size_t i = 0; i < loops.size(); ++i) {
+      if (skip[i].empty()) work[i].status = between.status();
+    }
+  }
+  // The first hole that stopped says why the fill did; the holes finished
+  // before it are merged all the same.
   for (const HoleWork& w : work) {
     if (!w.status.ok()) {
       out.status = w.status;
-      return out;  // cancelled or out of time: the mesh is not returned
+      out.partial = true;
+      break;
     }
   }
 
+  if (on_progress) on_progress(FillPhase::kMerge, selected, selected);
   out.mesh = mesh;
   Merged merged;
   merged.split.assign(mesh.triangles.size(), false);
   for (HoleWork& w : work) {
-    if (!between.Poll()) {  // the merge checks patches against each other
-      out = {};
-      out.status = between.status();
-      return out;
-    }
     HoleReport& r = w.report;
-    if (r.status == HoleStatus::kFilled) {
+    if (!w.status.ok()) {
+      r.status = HoleStatus::kStopped;
+      r.reason = std::string(w.started ? "stopped: " : "not started: ") +
+                 StopCause(w.status);
+    } else if (r.status == HoleStatus::kFilled) {
+      // Bounded by the patches made, so not interrupted: a stop keeps them.
       std::string refused;
-      const Status s = Merge(mesh, w, control, &merged, &out, &refused);
-      if (!s.ok()) {
-        out = {};
-        out.status = s;
-        return out;
-      }
+      Merge(mesh, w, &merged, &out, &refused);
       if (!refused.empty()) {
         r.status = HoleStatus::kFailed;
         r.reason = refused + ": left open (fill it in a call of its own)";
@@ -526,6 +542,9 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       case HoleStatus::kSkipped:
         ++out.report.skipped;
         break;
+      case HoleStatus::kStopped:
+        ++out.report.stopped;
+        break;
       default:
         ++out.report.unfilled;
     }
@@ -536,12 +555,10 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       static_cast<int32_t>(out.mesh.vertices.size() - mesh.vertices.size());
   out.report.added_faces =
       static_cast<int32_t>(out.mesh.triangles.size() - mesh.triangles.size());
-  out.report.closed = Closed(out.mesh.triangles, between);
-  if (!between.Poll()) {
-    out = {};
-    out.status = between.status();
-    return out;
-  }
+  // A hole left open leaves its border; only a mesh with every loop filled
+  // is checked edge by edge (a linear pass, not interrupted either).
+  out.report.closed =
+      out.report.filled == out.report.loops && Closed(out.mesh.triangles);
   out.report.total_ms = MsSince(t_start);
   return out;
 }
@@ -558,6 +575,20 @@ std::string_view FillStageName(FillStage s) {
   return "?";
 }
 
+std::string_view FillPhaseName(FillPhase p) {
+  switch (p) {
+    case FillPhase::kRepair:
+      return "repair";
+    case FillPhase::kLoops:
+      return "loops";
+    case FillPhase::kHoles:
+      return "holes";
+    case FillPhase::kMerge:
+      return "merge";
+  }
+  return "?";
+}
+
 std::string_view HoleStatusName(HoleStatus s) {
   switch (s) {
     case HoleStatus::kFilled:
@@ -570,6 +601,8 @@ std::string_view HoleStatusName(HoleStatus s) {
       return "listed";
     case HoleStatus::kFailed:
       return "failed";
+    case HoleStatus::kStopped:
+      return "stopped";
   }
   return "?";
 }

@@ -9,7 +9,8 @@
 namespace dot {
 
 SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
-                        const Control& control, const HoleProgressFn& on_hole) {
+                        const Control& control,
+                        const FillProgressFn& on_progress) {
   SoupFillResult out;
   out.fill.status = CheckFillOptions(options);
   if (!out.fill.status.ok()) return out;
@@ -23,6 +24,7 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
       return out;
     }
   }
+  if (on_progress) on_progress(FillPhase::kRepair, 0, 0);
   MeshData mesh;
   out.fill.status =
       options.repair
@@ -37,7 +39,7 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   }
   out.input_vertices = static_cast<int64_t>(mesh.vertices.size());
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());
-  out.fill = FillHoles(mesh, fill_options, control, on_hole);
+  out.fill = FillHoles(mesh, fill_options, control, on_progress);
   return out;
 }
 

@@ -95,7 +95,14 @@ TEST(FairSolverTest, ACancelDuringTheSolveStopsTheFill) {
   };
   const FillResult r = FillHoles(m, FillOptions{}, control);
   EXPECT_EQ(r.status.code, StatusCode::kCancelled) << r.status.message;
-  EXPECT_TRUE(r.mesh.triangles.empty());
+  // The one hole stopped mid-fill: the mesh comes back as it was.
+  EXPECT_TRUE(r.partial);
+  EXPECT_EQ(r.mesh.triangles, m.triangles);
+  ASSERT_EQ(r.report.holes.size(), 1u);
+  EXPECT_EQ(r.report.holes[0].status, HoleStatus::kStopped);
+  EXPECT_EQ(r.report.holes[0].reason, "stopped: the fill was cancelled");
+  EXPECT_EQ(r.report.stopped, 1);
+  EXPECT_FALSE(r.report.closed);
 }
 
 TEST(SolveSparseLuTest, SolvesSeveralRightHandSidesAndRefusesSingularOnes) {
@@ -134,7 +141,8 @@ TEST(FairSolverTest, AStopInsideTheHookIsReportedAsTheSolvesOwn) {
   EXPECT_EQ(r.status.code, StatusCode::kDeadlineExceeded) << r.status.message;
   EXPECT_NE(r.status.message.find("the sparse solve"), std::string::npos)
       << r.status.message;
-  EXPECT_TRUE(r.mesh.triangles.empty());
+  EXPECT_TRUE(r.partial);
+  EXPECT_EQ(r.mesh.triangles, m.triangles);  // its one hole stopped
 }
 
 }  // namespace

@@ -125,7 +125,7 @@ TEST(FillHolesTest, ADryRunListsEachLoopWithItsSizeAndFillsNone) {
   }
 }
 
-TEST(FillHolesTest, CancelStopsAndLeavesNoMesh) {
+TEST(FillHolesTest, ACancelBeforeTheLoopsAreFoundLeavesNoMesh) {
   MeshData m;
   if (!Load("holes.off", &m)) GTEST_SKIP() << "holes.off missing";
   std::atomic<bool> cancel{true};
@@ -133,6 +133,7 @@ TEST(FillHolesTest, CancelStopsAndLeavesNoMesh) {
   c.cancel = &cancel;
   const FillResult r = FillHoles(m, {}, c);
   EXPECT_EQ(r.status.code, StatusCode::kCancelled) << r.status.message;
+  EXPECT_FALSE(r.partial);
   EXPECT_TRUE(r.mesh.triangles.empty());
 }
 

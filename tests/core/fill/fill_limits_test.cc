@@ -129,6 +129,7 @@ TEST(FillLimitsTest, CancelAndDeadlineStopEveryStage) {
     c.cancel = &cancel;
     FillResult r = FillHoles(m, o, c);
     EXPECT_EQ(r.status.code, StatusCode::kCancelled);
+    EXPECT_FALSE(r.partial);  // stopped before the loops were found
     EXPECT_TRUE(r.mesh.vertices.empty());
     Control late;
     late.deadline = std::chrono::steady_clock::now();
@@ -159,6 +160,70 @@ TEST(FillLimitsTest, CancelAndDeadlineStopEveryStage) {
   MeshData triangulated;
   EXPECT_EQ(TriangulateSoup(polygon, c, &triangulated).code,
             StatusCode::kCancelled);
+}
+
+TEST(FillLimitsTest, AStopKeepsEveryHoleFinishedBeforeIt) {
+  const MeshData m = HoleyTorus(60, 30, 5);
+  FillOptions o;
+  o.threads = 1;  // holes one at a time: the stop falls between two
+  const FillResult full = FillHoles(m, o);
+  ASSERT_TRUE(full.status.ok()) << full.status.message;
+  ASSERT_EQ(full.report.filled, 5);
+  std::atomic<bool> cancel{false};
+  Control c;
+  c.cancel = &cancel;
+  std::vector<FillPhase> phases;
+  const FillResult r =
+      FillHoles(m, o, c, [&](FillPhase phase, int done, int total) {
+        if (phases.empty() || phases.back() != phase) phases.push_back(phase);
+        EXPECT_EQ(total, phase == FillPhase::kLoops ? 0 : 5);
+        if (phase == FillPhase::kHoles && done == 2) cancel = true;
+      });
+  EXPECT_EQ(phases,
+            (std::vector<FillPhase>{FillPhase::kLoops, FillPhase::kHoles,
+                                    FillPhase::kMerge}));
+  EXPECT_EQ(r.status.code, StatusCode::kCancelled) << r.status.message;
+  ASSERT_TRUE(r.partial);
+  EXPECT_EQ(r.report.filled, 2);
+  EXPECT_EQ(r.report.stopped, 3);
+  EXPECT_FALSE(r.report.closed);
+  testing::ExpectFilledMesh(m, r, /*closed=*/false, "stopped after 2 holes");
+  // The two kept are the patches a full fill makes for those holes.
+  ASSERT_EQ(r.patches.size(), 2u);
+  for (const FilledHole& kept : r.patches) {
+    const HoleReport& h = r.report.holes[kept.hole];
+    EXPECT_EQ(h.status, HoleStatus::kFilled);
+    for (const FilledHole& f : full.patches) {
+      if (f.hole != kept.hole) continue;
+      EXPECT_EQ(kept.patch.new_vertices, f.patch.new_vertices);
+    }
+  }
+  for (const HoleReport& h : r.report.holes) {
+    if (h.status == HoleStatus::kStopped) {
+      EXPECT_EQ(h.reason, "not started: the fill was cancelled");
+    }
+  }
+}
+
+TEST(FillLimitsTest, ADeadlineAtAnyPointLeavesAValidMeshOrNone) {
+  const MeshData m = testing::HoleyTorus(80, 40, 5, 300);
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(FillHoles(m).status.ok());
+  const auto full = std::chrono::steady_clock::now() - t0;
+  // Deadlines through the whole fill: in the loops, the holes, the merge.
+  for (int percent : {2, 20, 40, 60, 80, 95}) {
+    Control c;
+    c.deadline = std::chrono::steady_clock::now() + full * percent / 100;
+    const std::string what = std::to_string(percent) + "% of the time";
+    const FillResult r = FillHoles(m, FillOptions{}, c);
+    if (r.status.ok() || r.partial) {
+      testing::ExpectFilledMesh(m, r, /*closed=*/r.status.ok(), what);
+      EXPECT_EQ(r.report.filled + r.report.stopped, 5) << what;
+    } else {
+      EXPECT_EQ(r.status.code, StatusCode::kDeadlineExceeded) << what;
+      EXPECT_TRUE(r.mesh.triangles.empty()) << what;
+    }
+  }
 }
 
 }  // namespace
