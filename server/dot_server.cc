@@ -156,7 +156,10 @@ void DotServer::Drain(std::chrono::milliseconds grace) {
   if (drained_.exchange(true)) return;
   SetServing(false);
   jobs_->StartDraining();
-  const auto until = std::chrono::steady_clock::now() + grace;
+  // Work still running at 80% of the grace period is stopped; the rest
+  // (at least 2 s) lets stopped fills send the holes they finished.
+  const auto start = std::chrono::steady_clock::now();
+  const auto until = start + grace * 4 / 5;
   spdlog::info("draining: {} requests in flight, up to {} ms",
                jobs_->inflight(), grace.count());
   while (jobs_->inflight() > 0 && std::chrono::steady_clock::now() < until) {
@@ -166,7 +169,10 @@ void DotServer::Drain(std::chrono::milliseconds grace) {
     spdlog::warn("cancelling {} requests still in flight", jobs_->inflight());
     jobs_->CancelAllForDrain();
   }
-  server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  const auto answers = std::max<std::chrono::steady_clock::duration>(
+      std::chrono::seconds(2),
+      start + grace - std::chrono::steady_clock::now());
+  server_->Shutdown(std::chrono::system_clock::now() + answers);
   if (health_server_) health_server_->Shutdown();
   spdlog::info("stopped");
 }

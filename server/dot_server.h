@@ -33,7 +33,9 @@ class DotServer {
   // The plaintext health-only port (ServerConfig::health_listen); 0: none.
   int health_port() const { return health_port_; }
   // Graceful stop: health NOT_SERVING, new requests refused, in-flight work
-  // given `grace` to finish, then cancelled; the gRPC server shut down.
+  // given 80% of `grace` to finish, then stopped (a stopped fill answers
+  // the holes it finished); the gRPC server shut down once answers are
+  // sent or `grace` is over (at least 2 s after the stop).
   void Drain(std::chrono::milliseconds grace);
 
   JobRunner& jobs() { return *jobs_; }

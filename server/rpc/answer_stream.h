@@ -13,7 +13,6 @@
 
 #include <memory>
 #include <mutex>
-#include <optional>
 
 #include "rpc/answer_writer.h"
 #include "rpc/job.h"
@@ -26,16 +25,16 @@ template <class Base, class Response>
 class AnswerStream : public Base {
  public:
   void OnWriteDone(bool ok) override {
-    if (writer_.WriteDone(ok, job_.get())) {
-      WriteNext();
-      return;
-    }
-    // A forced report that found this write in flight goes now, unless
-    // the computing thread writes a newer one first.
-    std::optional<Response> next = TakePending();
-    if (next && writer_.ClaimProgress(Clock::duration::zero(), true)) {
-      message_ = std::move(*next);
-      Write(false);
+    switch (
+        writer_.WriteDone(ok, job_.get(), [this] { message_.Swap(&kept_); })) {
+      case AnswerWriter::Next::kKept:  // a forced report that waited
+        Write(false);
+        break;
+      case AnswerWriter::Next::kAnswer:
+        WriteNext();
+        break;
+      case AnswerWriter::Next::kNothing:
+        break;
     }
   }
   void OnDone() override {
@@ -67,20 +66,16 @@ class AnswerStream : public Base {
   // From the computing thread: writes the progress report `fill` makes,
   // unless one is in flight or younger than `interval`. A `force`d report
   // (a new phase, the last hole) ignores the interval and, when a write is
-  // in flight, is kept to go after it (before the answer), unless a newer
-  // report goes first.
+  // in flight, is kept to go right after it (before the answer), unless a
+  // newer kept report replaces it.
   template <class Fill>
   void WriteProgress(Clock::duration interval, bool force, const Fill& fill) {
-    if (!writer_.ClaimProgress(interval, force)) {
-      if (force) {
-        std::lock_guard<std::mutex> lock(pending_mu_);
-        pending_.emplace();
-        pending_->set_id(job_->id);
-        fill(&*pending_);
-      }
-      return;
-    }
-    TakePending();  // this report is newer
+    const auto keep = [&] {
+      kept_.Clear();
+      kept_.set_id(job_->id);
+      fill(&kept_);
+    };
+    if (!writer_.ClaimProgress(interval, force, keep)) return;
     message_.Clear();
     message_.set_id(job_->id);
     fill(&message_);
@@ -111,22 +106,10 @@ class AnswerStream : public Base {
   bool finished_ = false;
 
  private:
-  std::optional<Response> TakePending() {
-    std::lock_guard<std::mutex> lock(pending_mu_);
-    std::optional<Response> taken = std::move(pending_);
-    pending_.reset();
-    return taken;
-  }
-
   // Only ever called by whoever holds the (single) right to write.
   void WriteNext() {
     if (writer_.broken()) {
       FinishWith(StoppedStatus(job_->stop));
-      return;
-    }
-    if (std::optional<Response> last_report = TakePending()) {
-      message_ = std::move(*last_report);  // then the answer
-      Write(false);
       return;
     }
     bool last = false;
@@ -153,10 +136,9 @@ class AnswerStream : public Base {
   }
 
   AnswerWriter writer_;
-  std::mutex pending_mu_;
-  std::optional<Response> pending_;  // a forced report waiting for a write
-  Response message_;                 // the message being written
-  grpc::ByteBuffer bytes_;           // message_, serialized
+  Response message_;        // the message being written
+  Response kept_;           // a forced report waiting (under writer_'s lock)
+  grpc::ByteBuffer bytes_;  // message_, serialized
 };
 
 }  // namespace dot::server

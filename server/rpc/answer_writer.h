@@ -8,6 +8,7 @@
 #ifndef DOT_SERVER_RPC_ANSWER_WRITER_H_
 #define DOT_SERVER_RPC_ANSWER_WRITER_H_
 
+#include <functional>
 #include <mutex>
 
 #include "rpc/job.h"
@@ -18,15 +19,24 @@ class AnswerWriter {
  public:
   // From the computing thread: true when a progress report may be written
   // now (the caller writes it; its completion comes to WriteDone). False:
-  // skip this one (a write is in flight, the job has ended, the call is
-  // closed, or the last report is younger than `interval`, unless `force`).
-  bool ClaimProgress(Clock::duration interval, bool force = false) {
+  // skip this one (the job has ended, the call is closed, or the last
+  // report is younger than `interval`, unless `force`), or, when a write is
+  // in flight, keep a forced one: `keep` runs under the writer's lock and
+  // stores the report, which goes out right after that write (WriteDone
+  // says kKept) unless a newer kept report replaces it.
+  bool ClaimProgress(Clock::duration interval, bool force = false,
+                     const std::function<void()>& keep = nullptr) {
     std::lock_guard<std::mutex> lock(mu_);
     const auto now = Clock::now();
-    if (writing_ || job_done_ || broken_ || closed_ ||
-        (!force && now - last_progress_ < interval)) {
+    if (job_done_ || broken_ || closed_) return false;
+    if (writing_) {
+      if (force && keep) {
+        keep();
+        kept_ = true;
+      }
       return false;
     }
+    if (!force && now - last_progress_ < interval) return false;
     last_progress_ = now;
     writing_ = true;
     return true;
@@ -41,19 +51,31 @@ class AnswerWriter {
     writing_ = true;
     return true;
   }
-  // OnWriteDone: true when the caller holds the right to write the next
-  // message of the answer (or to finish, when broken()).
-  bool WriteDone(bool ok, Job* job) {
+  enum class Next {
+    kNothing,  // the right to write is given back: the job carries on
+    kKept,     // write the kept report (`take` has moved it out)
+    kAnswer,   // write the answer's next message, or finish if broken()
+  };
+  // OnWriteDone: what the caller, who keeps the right to write unless
+  // kNothing, does next. `take` runs under the lock when kKept.
+  Next WriteDone(bool ok, Job* job,
+                 const std::function<void()>& take = nullptr) {
     std::lock_guard<std::mutex> lock(mu_);
     if (!ok) {
       broken_ = true;
       if (job != nullptr) job->Stop(StopReason::kClientGone);
     }
+    const bool kept = kept_ && !broken_ && !closed_;
+    kept_ = false;
+    if (kept) {
+      if (take) take();
+      return Next::kKept;
+    }
     if (!job_done_) {  // a progress report; the job carries on
       writing_ = false;
-      return false;
+      return Next::kNothing;
     }
-    return true;
+    return Next::kAnswer;
   }
   // A write failed: the client is gone.
   bool broken() {
@@ -69,6 +91,7 @@ class AnswerWriter {
  private:
   std::mutex mu_;
   bool writing_ = false;   // a write is in flight
+  bool kept_ = false;      // a forced report waits for it (ClaimProgress)
   bool job_done_ = false;  // on_done has run
   bool broken_ = false;    // a write failed
   bool closed_ = false;    // the reactor finishes the call

@@ -125,8 +125,10 @@ void FillHolesReactor::StartFill() {
     return;
   }
   job_->on_done = [this] { JobDone(); };
-  const auto fill = [this](Job& job, const Control& control) {
+  const auto fill = [this](Job& job, const Control& job_control) {
     wire::FillProgressClock clock(job.arrived);
+    Control control = job_control;  // a stopped fill's holes are kept
+    control.keep_partial = [&job] { return job.ClientWaits(); };
     return call_.Run(
         std::move(soup_), control,
         [this, &clock](FillPhase phase, int done, int total) {
@@ -151,11 +153,7 @@ grpc::Status FillHolesReactor::NextAnswer(v1::FillHolesResponse* message,
       JobStatus(*job_, runner_->options().max_compute_ms);
   // A fill stopped by a limit or a drain answers what it kept, then its
   // status; a client that left or cancelled is not written to.
-  const StopReason stop = job_->stop;
-  const bool keep = call_.partial() && stop != StopReason::kClientCancel &&
-                    stop != StopReason::kClientDeadline &&
-                    stop != StopReason::kClientGone;
-  if (!status.ok() && !keep) return status;
+  if (!status.ok() && !(call_.partial() && job_->ClientWaits())) return status;
   call_.Next(job_->id, runner_->options().chunk_bytes, message);
   *last = call_.done();
   return *last ? status : grpc::Status::OK;

@@ -80,6 +80,15 @@ struct Job {
              : StopReason::kClientCancel);
   }
 
+  // Whether the client still waits for an answer: not once it cancelled,
+  // its deadline passed or a write to it failed (a limit or a drain stops
+  // the job, not the client).
+  bool ClientWaits() const {
+    const StopReason why = stop;
+    return why != StopReason::kClientCancel &&
+           why != StopReason::kClientDeadline && why != StopReason::kClientGone;
+  }
+
   // Written by the computing thread before on_done; read after it.
   bool ran = false;
   Result result;

@@ -250,9 +250,8 @@ class DotOperator:
         part of it is in the mesh."""
         result = self.finish(context, state, payload)
         if stopped is not None:
-            self.report({'WARNING'}, "DOT: stopped early, "
-                        f"{payload.report.stopped} holes not filled: "
-                        f"{describe(stopped)}")
+            self.report({'WARNING'}, f"{describe(stopped)} (stopped early: "
+                        f"{payload.report.stopped} holes not filled)")
         return result
 
 
@@ -286,8 +285,8 @@ _PHASES = {"repair": "repairing the mesh", "loops": "finding the holes",
 
 def fill_status(p):
     """The status bar's text for a dot_client.FillProgress."""
-    if p.phase != "holes":
-        return _PHASES.get(p.phase, "working")
+    if p.phase != "holes" and (p.phase or not p.holes_total):
+        return _PHASES.get(p.phase, "working")  # a server without phases
     text = f"{p.holes_done} of {p.holes_total} holes"
     if p.eta_ms > 0:
         text += f", about {int(p.eta_ms / 1000) + 1} s left"

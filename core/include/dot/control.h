@@ -83,6 +83,11 @@ struct Control {
   // Keeps and reuses weight-independent search spaces across calls; null:
   // no caching. See dot/space_cache.h.
   SpaceCache* space_cache = nullptr;
+  // Asked when a run stops after finishing part of its work (a fill with
+  // some holes done): whether that part is still wanted, so the run
+  // assembles and returns it (FillResult::partial). Null: it is. The
+  // server says no once its client has gone.
+  std::function<bool()> keep_partial;
 };
 
 }  // namespace dot

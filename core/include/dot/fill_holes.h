@@ -200,11 +200,13 @@ struct FilledHole {
 
 // `status` is kOk when every selected hole was tried, even when some stay
 // open (see report). When the fill stops early (cancel, deadline, an
-// error of one hole) after the holes were found, nothing done is thrown
-// away: `partial` is set, status says why it stopped, and mesh, report and
-// patches hold every hole finished before the stop, in a valid mesh; the
-// others are reported kStopped. Not OK and not partial: nothing to keep
-// (the options, the mesh, or a stop before the holes were found).
+// error of one hole) after finishing some holes, nothing done is thrown
+// away: `partial` is set, status says why it stopped (a cancel or the
+// deadline rather than one hole's error), and mesh, report and patches
+// hold every hole finished before the stop, in a valid mesh; the others
+// are reported kStopped. Not OK and not partial: nothing to keep (the
+// options, the mesh, a stop before any hole was finished, or
+// Control::keep_partial said no).
 struct FillResult {
   Status status;
   bool partial = false;

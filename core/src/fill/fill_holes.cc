@@ -495,7 +495,7 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
         if (!skip[i].empty()) return;
         FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
-        if (on_progress) {
+        if (on_progress && work[i].status.ok()) {  // stopped ones are not done
           std::lock_guard<std::mutex> lock(progress_mu);
           on_progress(FillPhase::kHoles, ++done, selected);
         }
@@ -506,17 +506,25 @@ FillResult FillHoles(const MeshData& mesh, const FillOptions& options,
       if (skip[i].empty()) work[i].status = between.status();
     }
   }
-  // The first hole that stopped says why the fill did; the holes finished
-  // before it are merged all the same.
+  // Why the fill stopped, if it did: a cancel or the deadline (which stop
+  // every hole after it) rather than one hole's own error. The holes
+  // finished before it are kept when any is and the caller still wants
+  // them.
+  int finished = 0;
   for (const HoleWork& w : work) {
-    if (!w.status.ok()) {
-      out.status = w.status;
-      out.partial = true;
-      break;
+    finished += w.status.ok() && w.report.status == HoleStatus::kFilled;
+    const bool stop = w.status.code == StatusCode::kCancelled ||
+                      w.status.code == StatusCode::kDeadlineExceeded;
+    if (!w.status.ok() && (out.status.ok() || stop)) out.status = w.status;
+  }
+  if (!out.status.ok()) {
+    if (finished == 0 || (control.keep_partial && !control.keep_partial())) {
+      return out;  // nothing to keep, or nobody to keep it for
     }
+    out.partial = true;
   }
 
-  if (on_progress) on_progress(FillPhase::kMerge, selected, selected);
+  if (on_progress) on_progress(FillPhase::kMerge, finished, selected);
   out.mesh = mesh;
   Merged merged;
   merged.split.assign(mesh.triangles.size(), false);

@@ -203,6 +203,16 @@ TEST(FillLimitsTest, AStopKeepsEveryHoleFinishedBeforeIt) {
       EXPECT_EQ(h.reason, "not started: the fill was cancelled");
     }
   }
+  // Nobody to keep them for (a server whose client left): status only.
+  c.keep_partial = [] { return false; };
+  cancel = false;
+  const FillResult unwanted =
+      FillHoles(m, o, c, [&](FillPhase phase, int done, int) {
+        if (phase == FillPhase::kHoles && done == 2) cancel = true;
+      });
+  EXPECT_EQ(unwanted.status.code, StatusCode::kCancelled);
+  EXPECT_FALSE(unwanted.partial);
+  EXPECT_TRUE(unwanted.mesh.triangles.empty());
 }
 
 TEST(FillLimitsTest, ADeadlineAtAnyPointLeavesAValidMeshOrNone) {
@@ -219,6 +229,7 @@ TEST(FillLimitsTest, ADeadlineAtAnyPointLeavesAValidMeshOrNone) {
     if (r.status.ok() || r.partial) {
       testing::ExpectFilledMesh(m, r, /*closed=*/r.status.ok(), what);
       EXPECT_EQ(r.report.filled + r.report.stopped, 5) << what;
+      EXPECT_GT(r.report.filled, 0) << what;
     } else {
       EXPECT_EQ(r.status.code, StatusCode::kDeadlineExceeded) << what;
       EXPECT_TRUE(r.mesh.triangles.empty()) << what;
