@@ -270,6 +270,11 @@ using FillProgressFn =
 FillResult FillHoles(const MeshData& mesh, const FillOptions& options = {},
                      const Control& control = {},
                      const FillProgressFn& on_progress = nullptr);
+// The same, taking the mesh's arrays for the result instead of copying
+// them (a scan is then held once): `mesh` is left empty.
+FillResult FillHoles(MeshData&& mesh, const FillOptions& options = {},
+                     const Control& control = {},
+                     const FillProgressFn& on_progress = nullptr);
 
 }  // namespace dot
 

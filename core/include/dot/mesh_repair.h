@@ -49,6 +49,11 @@ struct RepairReport {
 Status RepairMesh(const PolygonSoup& soup, MeshData* out, RepairReport* report);
 Status RepairMesh(const PolygonSoup& soup, const Control& control,
                   MeshData* out, RepairReport* report);
+// The same, releasing the soup as soon as its faces are read (before the
+// repair's largest step): a caller that moves its soup in holds the mesh
+// about once. `soup` is left empty.
+Status RepairMesh(PolygonSoup&& soup, const Control& control, MeshData* out,
+                  RepairReport* report);
 
 }  // namespace dot
 

@@ -28,7 +28,7 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   MeshData mesh;
   out.fill.status =
       options.repair
-          ? RepairMesh(soup, control, &mesh, &out.repair)
+          ? RepairMesh(std::move(soup), control, &mesh, &out.repair)
           : TriangulateSoup(soup, control, &mesh, &out.repair.face_origin);
   soup = {};  // the repaired mesh replaces it
   if (!out.fill.status.ok()) return out;
@@ -39,7 +39,7 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   }
   out.input_vertices = static_cast<int64_t>(mesh.vertices.size());
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());
-  out.fill = FillHoles(mesh, fill_options, control, on_progress);
+  out.fill = FillHoles(std::move(mesh), fill_options, control, on_progress);
   return out;
 }
 

@@ -44,16 +44,24 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
     if (Norm(sum) == 0) sum = {0, 0, 1};
     p.normals.push_back(Normalized(sum));
   }
-  // Chords the mesh already has.
+  // Chords the mesh already has: from each loop vertex, the corners of its
+  // faces that are later loop vertices, each once.
+  std::vector<int32_t> later;
   for (int32_t i = 0; i < n; ++i) {
     const int32_t v = loop.vertices[i];
-    for (int32_t k = topo.ring_begin[v]; k < topo.ring_begin[v + 1]; ++k) {
-      auto it = position.find(topo.ring[k]);
-      if (it == position.end() || it->second <= i) continue;
-      const int32_t j = it->second;
-      if (j == i + 1 || (i == 0 && j == n - 1)) continue;
-      p.forbidden_edges.emplace_back(i, j);
+    later.clear();
+    for (int32_t k = topo.face_begin[v]; k < topo.face_begin[v + 1]; ++k) {
+      for (int32_t w : mesh.triangles[topo.faces[k]]) {
+        auto it = position.find(w);
+        if (it == position.end() || it->second <= i) continue;
+        const int32_t j = it->second;
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;
+        later.push_back(j);
+      }
     }
+    std::sort(later.begin(), later.end());
+    later.erase(std::unique(later.begin(), later.end()), later.end());
+    for (int32_t j : later) p.forbidden_edges.emplace_back(i, j);
   }
   p.weights = options.weights;
   if (options.scale_free_weights && perimeter > 0) {

@@ -26,21 +26,6 @@ void BuildRows(const MeshData& mesh, MeshTopology* topo) {
       topo->faces[fill[v]++] = static_cast<int32_t>(f);
     }
   }
-  // Neighbours: the other corners of each incident face, deduplicated.
-  topo->ring_begin.assign(nv + 1, 0);
-  std::vector<int32_t> around;
-  for (size_t v = 0; v < nv; ++v) {
-    around.clear();
-    for (int32_t k = topo->face_begin[v]; k < topo->face_begin[v + 1]; ++k) {
-      for (int32_t w : mesh.triangles[topo->faces[k]]) {
-        if (w != static_cast<int32_t>(v)) around.push_back(w);
-      }
-    }
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    topo->ring.insert(topo->ring.end(), around.begin(), around.end());
-    topo->ring_begin[v + 1] = static_cast<int32_t>(topo->ring.size());
-  }
 }
 
 }  // namespace

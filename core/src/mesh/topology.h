@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // What hole filling asks of a mesh, indexed once: the faces around each
-// vertex and the vertices joined to it by an edge (compressed rows), and
-// the faces in a box tree (which faces come near a patch).
+// vertex (compressed rows; a vertex's neighbours are their corners) and the
+// faces in a box tree (which faces come near a patch).
 #ifndef DOT_CORE_MESH_TOPOLOGY_H_
 #define DOT_CORE_MESH_TOPOLOGY_H_
 
@@ -16,7 +16,6 @@ namespace dot {
 
 struct MeshTopology {
   std::vector<int32_t> face_begin, faces;  // vertex v: faces[face_begin[v]..]
-  std::vector<int32_t> ring_begin, ring;   // vertex v: its neighbours
   std::shared_ptr<const FaceTree> face_tree;  // null: BuildMeshAdjacency
 };
 

@@ -18,6 +18,7 @@
 
 #include "dot/io.h"
 #include "dot/triangulate.h"
+#include "mesh_io/polygon_triangles.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -30,34 +31,6 @@ std::string LowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   return ext;
-}
-
-// A polygon's triangles: DOT's minimal-area triangulation of its corners
-// (planar polygons go through the 2D constrained Delaunay triangulation),
-// or a fan when DOT refuses it (e.g. a polygon that repeats a corner).
-// Fails only when `control` stops the run.
-Status TriangulatePolygon(const PolygonSoup& soup,
-                          const std::vector<int32_t>& f, const Control& control,
-                          std::vector<Triangle>* out) {
-  if (f.size() > 3) {
-    Problem p;
-    for (int32_t v : f) p.vertices.push_back(soup.vertices[v]);
-    const Result r = Triangulate(p, Options{}, control);
-    if (r.status.code == StatusCode::kCancelled ||
-        r.status.code == StatusCode::kDeadlineExceeded) {
-      return r.status;
-    }
-    if (r.status.ok() && r.inserted.empty()) {
-      for (const Triangle& t : r.triangles) {
-        out->push_back({f[t[0]], f[t[1]], f[t[2]]});
-      }
-      return OkStatus();
-    }
-  }
-  for (size_t k = 1; k + 1 < f.size(); ++k) {
-    out->push_back({f[0], f[k], f[k + 1]});
-  }
-  return OkStatus();
 }
 
 // CGAL 5.5's PLY reader trusts the header where only its debug assertions
@@ -207,8 +180,8 @@ OffItem ItemAt(const std::string& path, std::streamoff offset) {
   return item;
 }
 
-Status ReadOff(const std::string& path, std::vector<Point>* points,
-               std::vector<std::vector<std::size_t>>* polygons) {
+// Straight into the flat soup: the reader holds no second copy.
+Status ReadOff(const std::string& path, PolygonSoup* out) {
   std::error_code ec;
   const auto bytes =
       static_cast<std::size_t>(std::filesystem::file_size(path, ec));
@@ -251,8 +224,9 @@ Status ReadOff(const std::string& path, std::vector<Point>* points,
         std::to_string(scanner.size_of_facets()) + " faces, more than its " +
         std::to_string(bytes) + " bytes can hold");
   }
-  points->resize(scanner.size_of_vertices());
-  for (std::size_t v = 0; v < points->size(); ++v) {
+  std::vector<Vec3>& points = out->vertices;
+  points.resize(scanner.size_of_vertices());
+  for (std::size_t v = 0; v < points.size(); ++v) {
     double x = 0, y = 0, z = 0, w = 1, ignored = 0;
     unsigned char r = 0, g = 0, b = 0;
     begin_item();
@@ -272,23 +246,24 @@ Status ReadOff(const std::string& path, std::vector<Point>* points,
         }
       }
       return at("vertex " + std::to_string(v) + " of " +
-                std::to_string(points->size()) +
+                std::to_string(points.size()) +
                 (words.empty() ? ": the file ends before it"
                  : bad.empty() ? ": too few coordinates"
                                : ": '" + bad + "' is not a finite number"));
     }
     if (w == 0) return at("vertex " + std::to_string(v) + " has w = 0");
-    (*points)[v] = Point(x / w, y / w, z / w);
+    points[v] = {x / w, y / w, z / w};
   }
-  polygons->resize(scanner.size_of_facets());
+  const std::size_t faces = scanner.size_of_facets();
+  out->faces.reserve(faces);
+  std::vector<int32_t> face;
   std::size_t corners = 0;
-  for (std::size_t f = 0; f < polygons->size(); ++f) {
+  for (std::size_t f = 0; f < faces; ++f) {
     std::size_t no = std::size_t(-1);
     begin_item();
     scanner.scan_facet(no, f);
     if ((!in.eof() && !in.good()) || no == std::size_t(-1)) {
-      return at("face " + std::to_string(f) + " of " +
-                std::to_string(polygons->size()) +
+      return at("face " + std::to_string(f) + " of " + std::to_string(faces) +
                 (read_item().empty() ? ": the file ends before it"
                                      : ": its corner count is not a number"));
     }
@@ -298,10 +273,10 @@ Status ReadOff(const std::string& path, std::vector<Point>* points,
       return at("face " + std::to_string(f) + " declares " +
                 std::to_string(no) + " corners, more than the file holds");
     }
-    std::vector<std::size_t>& face = (*polygons)[f];
     face.resize(no);
     for (std::size_t j = 0; j < no; ++j) {
-      scanner.scan_facet_vertex_index(face[j], j + 1, f);
+      std::size_t v = 0;
+      scanner.scan_facet_vertex_index(v, j + 1, f);
       if (!in) {
         const std::vector<std::string> words = read_item();
         const std::string word = j + 1 < words.size() ? words[j + 1] : "";
@@ -318,15 +293,17 @@ Status ReadOff(const std::string& path, std::vector<Point>* points,
         }
         return at("face " + std::to_string(f) + " has vertex index " +
                   std::to_string(index) + ", outside 0.." +
-                  std::to_string(points->size() - 1));
+                  std::to_string(points.size() - 1));
       }
-      if (face[j] >= points->size()) {
+      if (v >= points.size()) {
         read_item();
         return at("face " + std::to_string(f) + " has vertex index " +
-                  std::to_string(face[j]) + ", outside 0.." +
-                  std::to_string(points->size() - 1));
+                  std::to_string(v) + ", outside 0.." +
+                  std::to_string(points.size() - 1));
       }
+      face[j] = static_cast<int32_t>(v);
     }
+    out->faces.Add(face.begin(), face.end());
     if (scanner.has_fcolors()) {
       unsigned char r = 0, g = 0, b = 0;
       scanner.scan_color(r, g, b);
@@ -339,7 +316,69 @@ Status ReadOff(const std::string& path, std::vector<Point>* points,
   return OkStatus();
 }
 
+// OBJ, PLY and STL through CGAL's polygon-soup reader, then into the flat
+// soup, each reader copy released as it is converted.
+Status ReadWithCgal(const std::string& path, const std::string& ext,
+                    PolygonSoup* out) {
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  bool ok = false;
+  try {
+    ok = CGAL::IO::read_polygon_soup(path, points, polygons);
+  } catch (const std::exception& e) {
+    return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
+                           " file: " + e.what());
+  }
+  if (!ok) {
+    return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
+                           " mesh file (the reader stopped on it)");
+  }
+  if (points.size() > static_cast<size_t>(INT32_MAX)) {
+    return InvalidArgument("'" + path + "' has more than 2^31 vertices");
+  }
+  const size_t n = points.size();
+  out->vertices.reserve(n);
+  for (const Point& p : points) out->vertices.push_back({p.x(), p.y(), p.z()});
+  std::vector<Point>().swap(points);
+  out->faces.reserve(polygons.size());
+  for (size_t f = 0; f < polygons.size(); ++f) {
+    for (std::size_t v : polygons[f]) {
+      if (v >= n) {
+        return InvalidArgument("'" + path + "': face " + std::to_string(f) +
+                               " has vertex index " + std::to_string(v) +
+                               ", outside 0.." + std::to_string(n - 1));
+      }
+    }
+    out->faces.Add(polygons[f].begin(), polygons[f].end());
+    std::vector<std::size_t>().swap(polygons[f]);
+  }
+  return OkStatus();
+}
+
 }  // namespace
+
+Status TriangulatePolygon(const std::vector<Vec3>& vertices, FaceView f,
+                          const Control& control, std::vector<Triangle>* out) {
+  if (f.size() > 3) {
+    Problem p;
+    for (int32_t v : f) p.vertices.push_back(vertices[v]);
+    const Result r = Triangulate(p, Options{}, control);
+    if (r.status.code == StatusCode::kCancelled ||
+        r.status.code == StatusCode::kDeadlineExceeded) {
+      return r.status;
+    }
+    if (r.status.ok() && r.inserted.empty()) {
+      for (const Triangle& t : r.triangles) {
+        out->push_back({f[t[0]], f[t[1]], f[t[2]]});
+      }
+      return OkStatus();
+    }
+  }
+  for (size_t k = 1; k + 1 < f.size(); ++k) {
+    out->push_back({f[0], f[k], f[k + 1]});
+  }
+  return OkStatus();
+}
 
 Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
   *out = {};
@@ -355,51 +394,13 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
     const Status header = CheckPlyHeader(path);
     if (!header.ok()) return header;
   }
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
-  try {
-    if (ext == ".off") {
-      const Status s = ReadOff(path, &points, &polygons);
-      if (!s.ok()) return s;
-      ok = true;
-    } else {
-      ok = CGAL::IO::read_polygon_soup(path, points, polygons);
-    }
-  } catch (const std::exception& e) {
-    return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
-                           " file: " + e.what());
+  if (ext == ".off") {
+    const Status s = ReadOff(path, out);
+    if (!s.ok()) return s;
+  } else {
+    const Status s = ReadWithCgal(path, ext, out);
+    if (!s.ok()) return s;
   }
-  if (!ok) {
-    return InvalidArgument("'" + path + "' is not a valid " + ext.substr(1) +
-                           " mesh file (the reader stopped on it)");
-  }
-  if (points.size() > static_cast<size_t>(INT32_MAX)) {
-    return InvalidArgument("'" + path + "' has more than 2^31 vertices");
-  }
-  // Each reader copy is released as it is converted, so the peak is about
-  // one copy of the mesh, not two (a face's index vector frees a heap
-  // chunk of the size the next converted face takes).
-  const size_t n = points.size();
-  out->vertices.reserve(n);
-  for (const Point& p : points) out->vertices.push_back({p.x(), p.y(), p.z()});
-  std::vector<Point>().swap(points);
-  out->faces.reserve(polygons.size());
-  for (size_t f = 0; f < polygons.size(); ++f) {
-    std::vector<int32_t> face;
-    face.reserve(polygons[f].size());
-    for (std::size_t v : polygons[f]) {
-      if (v >= n) {
-        return InvalidArgument("'" + path + "': face " + std::to_string(f) +
-                               " has vertex index " + std::to_string(v) +
-                               ", outside 0.." + std::to_string(n - 1));
-      }
-      face.push_back(static_cast<int32_t>(v));
-    }
-    std::vector<std::size_t>().swap(polygons[f]);
-    out->faces.push_back(std::move(face));
-  }
-  std::vector<std::vector<std::size_t>>().swap(polygons);
   for (size_t v = 0; v < out->vertices.size(); ++v) {
     if (!IsFinite(out->vertices[v])) {
       return InvalidArgument("'" + path + "': vertex " + std::to_string(v) +
@@ -426,8 +427,8 @@ Status TriangulateSoup(const PolygonSoup& soup, const Control& control,
                              " corners; a face needs at least 3");
     }
     if (!ticker.Tick()) return ticker.status();
-    const Status s =
-        TriangulatePolygon(soup, soup.faces[f], control, &out->triangles);
+    const Status s = TriangulatePolygon(soup.vertices, soup.faces[f], control,
+                                        &out->triangles);
     if (!s.ok()) return s;
     if (face_of != nullptr) {
       face_of->resize(out->triangles.size(), static_cast<int32_t>(f));

@@ -2,13 +2,16 @@
 #include "dot/mesh_repair.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <numeric>
 #include <sstream>
 #include <tuple>
-#include <unordered_map>
 
 #include "mesh/edge_index.h"
+#include "mesh_io/polygon_triangles.h"
 #include "util/run_control.h"
 #include "util/union_find.h"
 
@@ -16,13 +19,6 @@ namespace dot {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-struct VecHash {
-  size_t operator()(const Vec3& v) const {
-    const std::hash<double> h;
-    return h(v.x) * 73856093u ^ h(v.y) * 19349663u ^ h(v.z) * 83492791u;
-  }
-};
 
 bool ZeroArea(const std::vector<Vec3>& v, const Triangle& t) {
   auto p = [&](int32_t i) { return K::Point_3(v[i].x, v[i].y, v[i].z); };
@@ -155,6 +151,50 @@ Status CountNonManifoldVertices(size_t vertex_count,
   return OkStatus();
 }
 
+// The distinct coordinates of `v` in order of first occurrence into
+// `merged`, and each vertex's id among them into `map`. Sorting ids by
+// coordinates needs 4 bytes a vertex where a hash map took about 60.
+Status MergeVertices(const std::vector<Vec3>& v, RunTicker& ticker,
+                     std::vector<int32_t>* map, std::vector<Vec3>* merged) {
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!ticker.Tick()) return ticker.status();
+    if (!IsFinite(v[i])) {  // and the sort below needs an order
+      return InvalidArgument("vertex " + std::to_string(i) +
+                             " has a non-finite coordinate");
+    }
+  }
+  std::vector<int32_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  tbb::parallel_sort(order.begin(), order.end(), [&v](int32_t a, int32_t b) {
+    const Vec3 &p = v[a], &q = v[b];
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return a < b;  // the first occurrence leads its run
+  });
+  if (!ticker.Poll()) return ticker.status();
+  // Each vertex -> the first occurrence of its coordinates, then (in id
+  // order, where that first one comes earlier) -> its merged id.
+  map->resize(v.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const bool same = k > 0 && v[order[k]] == v[order[k - 1]];
+    (*map)[order[k]] = same ? (*map)[order[k - 1]] : order[k];
+  }
+  order = {};
+  merged->clear();
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!ticker.Tick()) return ticker.status();
+    const int32_t first = (*map)[i];
+    if (first == static_cast<int32_t>(i)) {
+      (*map)[i] = static_cast<int32_t>(merged->size());
+      merged->push_back(v[i]);
+    } else {
+      (*map)[i] = (*map)[first];
+    }
+  }
+  return OkStatus();
+}
+
 }  // namespace
 
 std::string RepairReport::Summary() const {
@@ -173,31 +213,31 @@ Status RepairMesh(const PolygonSoup& soup, MeshData* out,
   return RepairMesh(soup, Control{}, out, report);
 }
 
-Status RepairMesh(const PolygonSoup& soup, const Control& control,
-                  MeshData* out, RepairReport* report) {
+namespace {
+
+// RepairMesh; when `owned` (== &soup) is given, it is released as soon as
+// its faces are converted, before orientation, the repair's largest step.
+Status Repair(const PolygonSoup& soup, PolygonSoup* owned,
+              const Control& control, MeshData* out, RepairReport* report) {
   *report = {};
   RunTicker ticker(control, "the repair of the mesh");
-  // Merge identical coordinates, first occurrence first.
-  PolygonSoup merged;
-  std::unordered_map<Vec3, int32_t, VecHash> first;
-  report->vertex_map.resize(soup.vertices.size());
-  for (size_t i = 0; i < soup.vertices.size(); ++i) {
-    if (!ticker.Tick()) return ticker.status();
-    auto [it, added] = first.emplace(
-        soup.vertices[i], static_cast<int32_t>(merged.vertices.size()));
-    if (added) {
-      merged.vertices.push_back(soup.vertices[i]);
-    } else {
-      ++report->merged_vertices;
-    }
-    report->vertex_map[i] = it->second;
-  }
-  std::vector<int32_t> merged_origin;  // merged face -> soup face
+  Status s =
+      MergeVertices(soup.vertices, ticker, &report->vertex_map, &out->vertices);
+  if (!s.ok()) return s;
+  report->merged_vertices =
+      static_cast<int64_t>(soup.vertices.size() - out->vertices.size());
+  // Faces over the merged ids, in order: a corner repeated next to itself
+  // dropped, a face left with fewer than 3 corners or a repeated one
+  // degenerate, a polygon triangulated.
+  std::vector<Triangle> tri;
+  std::vector<int32_t> tri_origin;  // triangle -> soup face
+  tri.reserve(soup.faces.corners() / 3);
+  tri_origin.reserve(soup.faces.corners() / 3);
+  std::vector<int32_t> corners, sorted;
   for (size_t i = 0; i < soup.faces.size(); ++i) {
     if (!ticker.Tick()) return ticker.status();
-    const auto& face = soup.faces[i];
-    std::vector<int32_t> f;
-    for (int32_t v : face) {
+    corners.clear();
+    for (int32_t v : soup.faces[i]) {
       if (v < 0 || static_cast<size_t>(v) >= soup.vertices.size()) {
         return InvalidArgument("face " + std::to_string(i) +
                                " has vertex index " + std::to_string(v) +
@@ -205,57 +245,77 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
                                std::to_string(soup.vertices.size() - 1));
       }
       const int32_t m = report->vertex_map[v];
-      if (f.empty() || f.back() != m) f.push_back(m);
+      if (corners.empty() || corners.back() != m) corners.push_back(m);
     }
-    while (f.size() > 1 && f.front() == f.back()) f.pop_back();
-    std::vector<int32_t> sorted = f;
+    while (corners.size() > 1 && corners.front() == corners.back())
+      corners.pop_back();
+    sorted = corners;
     std::sort(sorted.begin(), sorted.end());
-    if (f.size() < 3 ||
+    if (corners.size() < 3 ||
         std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
       ++report->degenerate_faces;
       continue;
     }
-    if (f.size() > 3) ++report->triangulated_polygons;
-    merged.faces.push_back(std::move(f));
-    merged_origin.push_back(static_cast<int32_t>(i));
-  }
-  MeshData tri;
-  std::vector<int32_t> tri_origin;
-  Status s = TriangulateSoup(merged, control, &tri, &tri_origin);
-  if (!s.ok()) return s;
-  if (!ticker.Poll()) return ticker.status();
-  out->vertices = std::move(tri.vertices);
-  out->triangles.clear();
-  // Duplicates by sorting (corner set, position): the first one is kept.
-  std::vector<std::pair<Triangle, int32_t>> keys;
-  keys.reserve(tri.triangles.size());
-  for (size_t f = 0; f < tri.triangles.size(); ++f) {
-    Triangle key = tri.triangles[f];
-    std::sort(key.begin(), key.end());
-    keys.emplace_back(key, static_cast<int32_t>(f));
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<bool> duplicate(tri.triangles.size(), false);
-  for (size_t k = 1; k < keys.size(); ++k) {
-    if (keys[k].first == keys[k - 1].first) duplicate[keys[k].second] = true;
-  }
-  keys = {};
-  if (!ticker.Poll()) return ticker.status();
-  for (size_t f = 0; f < tri.triangles.size(); ++f) {
-    const Triangle& t = tri.triangles[f];
-    if (ZeroArea(out->vertices, t)) {
-      ++report->degenerate_faces;
-    } else if (duplicate[f]) {
-      ++report->duplicate_faces;
+    if (corners.size() == 3) {
+      tri.push_back({corners[0], corners[1], corners[2]});
     } else {
-      out->triangles.push_back(t);
-      report->face_origin.push_back(merged_origin[tri_origin[f]]);
+      ++report->triangulated_polygons;
+      s = TriangulatePolygon(
+          out->vertices,
+          FaceView(corners.data(), corners.data() + corners.size()), control,
+          &tri);
+      if (!s.ok()) return s;
+    }
+    tri_origin.resize(tri.size(), static_cast<int32_t>(i));
+  }
+  const size_t soup_faces = soup.faces.size();
+  if (owned != nullptr) *owned = {};  // `soup` is not read after this
+  if (!ticker.Poll()) return ticker.status();
+  // Duplicates: ids sorted by (corner set, id), the first of each set
+  // kept; zero-area faces (exact) dropped. Both in parallel, and the kept
+  // faces compacted in place: no second copy of the faces.
+  auto corner_set = [&tri](int32_t f) {
+    Triangle k = tri[f];
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::vector<int32_t> by_corners(tri.size());
+  std::iota(by_corners.begin(), by_corners.end(), 0);
+  tbb::parallel_sort(by_corners.begin(), by_corners.end(),
+                     [&](int32_t a, int32_t b) {
+                       const Triangle ka = corner_set(a), kb = corner_set(b);
+                       return ka != kb ? ka < kb : a < b;
+                     });
+  std::vector<uint8_t> drop(tri.size(), 0);  // 1 duplicate, 2 zero area
+  for (size_t k = 1; k < by_corners.size(); ++k) {
+    if (corner_set(by_corners[k]) == corner_set(by_corners[k - 1])) {
+      drop[by_corners[k]] = 1;
     }
   }
+  by_corners = {};
+  tbb::parallel_for(size_t{0}, tri.size(), [&](size_t f) {
+    if (ZeroArea(out->vertices, tri[f])) drop[f] = 2;
+  });
+  if (!ticker.Poll()) return ticker.status();
+  size_t kept = 0;
+  for (size_t f = 0; f < tri.size(); ++f) {
+    if (drop[f] == 2) {
+      ++report->degenerate_faces;
+    } else if (drop[f] == 1) {
+      ++report->duplicate_faces;
+    } else {
+      tri[kept] = tri[f];
+      tri_origin[kept++] = tri_origin[f];
+    }
+  }
+  tri.resize(kept);
+  tri_origin.resize(kept);
+  out->triangles = std::move(tri);
+  report->face_origin = std::move(tri_origin);
   if (out->triangles.empty()) {
     return InvalidArgument(
         "nothing is left of the mesh after repair: its " +
-        std::to_string(soup.faces.size()) + " faces are all degenerate (" +
+        std::to_string(soup_faces) + " faces are all degenerate (" +
         std::to_string(report->degenerate_faces) + ") or duplicates (" +
         std::to_string(report->duplicate_faces) + ")");
   }
@@ -264,6 +324,18 @@ Status RepairMesh(const PolygonSoup& soup, const Control& control,
   if (!s.ok()) return s;
   return CountNonManifoldVertices(out->vertices.size(), out->triangles, ticker,
                                   &report->non_manifold_vertices);
+}
+
+}  // namespace
+
+Status RepairMesh(const PolygonSoup& soup, const Control& control,
+                  MeshData* out, RepairReport* report) {
+  return Repair(soup, nullptr, control, out, report);
+}
+
+Status RepairMesh(PolygonSoup&& soup, const Control& control, MeshData* out,
+                  RepairReport* report) {
+  return Repair(soup, &soup, control, out, report);
 }
 
 }  // namespace dot

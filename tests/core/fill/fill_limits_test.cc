@@ -155,8 +155,9 @@ TEST(FillLimitsTest, CancelAndDeadlineStopEveryStage) {
     polygon.vertices.push_back(
         {std::cos(a), std::sin(a), 0.2 * std::sin(5 * a)});
   }
-  polygon.faces.emplace_back();
-  for (int i = 0; i < 400; ++i) polygon.faces[0].push_back(i);
+  std::vector<int32_t> all(400);
+  for (int i = 0; i < 400; ++i) all[i] = i;
+  polygon.faces.push_back(all);
   MeshData triangulated;
   EXPECT_EQ(TriangulateSoup(polygon, c, &triangulated).code,
             StatusCode::kCancelled);
