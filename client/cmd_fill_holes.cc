@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -229,6 +230,38 @@ void PrintListing(const std::string& input, const v1::FillReport& r) {
             << " (dry run: nothing filled or written)\n";
 }
 
+// Wall time per phase, in the order they came: "read 5.1 s, repair ...".
+class PhaseClock {
+ public:
+  // Ends the phase under way, starts `name` ("" ends only); a name seen
+  // again (holes, report after report) continues its phase.
+  void Start(const std::string& name) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!phases_.empty()) {
+      phases_.back().second +=
+          std::chrono::duration<double>(now - since_).count();
+    }
+    since_ = now;
+    if (!name.empty() && (phases_.empty() || phases_.back().first != name)) {
+      phases_.emplace_back(name, 0.0);
+    }
+  }
+  std::string Summary() const {
+    std::ostringstream out;
+    out.precision(2);
+    out << std::fixed;
+    for (size_t i = 0; i < phases_.size(); ++i) {
+      out << (i ? ", " : "") << phases_[i].first << " " << phases_[i].second
+          << " s";
+    }
+    return out.str();
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>> phases_;
+  std::chrono::steady_clock::time_point since_;
+};
+
 // "  holes 40/1000, 12 s left" for the terminal's status line.
 std::string ProgressLine(const v1::FillProgress& p) {
   switch (p.phase()) {
@@ -302,10 +335,16 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
     auto phase = [bar](const std::string& text) {
       if (bar) std::cerr << "\r" << text << "\033[K" << std::flush;
     };
-    const auto on_progress = [&phase](const v1::FillProgress& p) {
+    // -v: where the time went, phase by phase (the fill's phases as its
+    // progress reports them).
+    PhaseClock clock;
+    const auto on_progress = [&phase, &clock](const v1::FillProgress& p) {
       phase(ProgressLine(p));
+      clock.Start(
+          std::string(FillPhaseName(wire::FillPhaseFromWire(p.phase()))));
     };
     phase("  reading " + f.input);
+    clock.Start("read");
     PolygonSoup soup;
     const Status read = ReadInput(f, &soup);
     phase("");
@@ -320,6 +359,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       if (!channel) return;
       auto stub = v1::Triangulator::NewStub(channel);
       phase("  uploading " + std::to_string(soup.faces.size()) + " faces");
+      clock.Start("upload");
       o = FillRemote(*stub, f.input, f.ToWire(), soup,
                      ctx->connection.timeout_s, on_progress);
     }
@@ -345,8 +385,11 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       return;
     }
     phase("  writing " + target.Name());
+    clock.Start("write");
     Status w = WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
     phase("");
+    clock.Start("");
+    if (ctx->verbose) std::cerr << "phases: " << clock.Summary() << "\n";
     std::string write_error = w.ok() ? sink.Commit() : w.message;
     if (!write_error.empty()) {
       report(kOutcomeWriteFailed, kExitFailed, write_error, true);

@@ -159,6 +159,14 @@ v1::FillPhase FillPhaseToWire(FillPhase phase) {
   return v1::FILL_PHASE_UNSPECIFIED;
 }
 
+FillPhase FillPhaseFromWire(v1::FillPhase phase) {
+  for (FillPhase p :
+       {FillPhase::kRepair, FillPhase::kLoops, FillPhase::kMerge}) {
+    if (FillPhaseToWire(p) == phase) return p;
+  }
+  return FillPhase::kHoles;
+}
+
 v1::FillProgress FillProgressClock::Report(FillPhase phase, int holes_done,
                                            int holes_total) {
   const auto now = std::chrono::steady_clock::now();

@@ -30,6 +30,8 @@ void FillReportToWire(const FillReport& report, const RepairReport& repair,
 v1::HoleStatus HoleStatusToWire(HoleStatus status);
 v1::Escalation EscalationToWire(Escalation escalation);
 v1::FillPhase FillPhaseToWire(FillPhase phase);
+// Back; an unknown value (a newer server's) reads as kHoles.
+FillPhase FillPhaseFromWire(v1::FillPhase phase);
 
 // One fill's progress reports as messages (the server's and dotctl
 // --local's alike): the phase, the holes, the time since `start` and, in

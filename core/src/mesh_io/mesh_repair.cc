@@ -249,10 +249,17 @@ Status Repair(const PolygonSoup& soup, PolygonSoup* owned,
     }
     while (corners.size() > 1 && corners.front() == corners.back())
       corners.pop_back();
-    sorted = corners;
-    std::sort(sorted.begin(), sorted.end());
-    if (corners.size() < 3 ||
-        std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+    bool repeated = corners.size() < 3;
+    if (corners.size() == 3) {  // most faces: no sort
+      repeated = corners[0] == corners[1] || corners[1] == corners[2] ||
+                 corners[0] == corners[2];
+    } else if (!repeated) {
+      sorted = corners;
+      std::sort(sorted.begin(), sorted.end());
+      repeated =
+          std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+    }
+    if (repeated) {
       ++report->degenerate_faces;
       continue;
     }
@@ -276,23 +283,36 @@ Status Repair(const PolygonSoup& soup, PolygonSoup* owned,
   // faces compacted in place: no second copy of the faces.
   auto corner_set = [&tri](int32_t f) {
     Triangle k = tri[f];
-    std::sort(k.begin(), k.end());
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    if (k[1] > k[2]) std::swap(k[1], k[2]);
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
     return k;
   };
+  // Faces bucketed by their lowest corner (a counting sort: linear), then
+  // each bucket's few faces ordered by (corner set, id).
+  const auto nf = static_cast<int32_t>(tri.size());
+  std::vector<int32_t> start(out->vertices.size() + 1, 0);
+  for (int32_t f = 0; f < nf; ++f) ++start[corner_set(f)[0] + 1];
+  for (size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
   std::vector<int32_t> by_corners(tri.size());
-  std::iota(by_corners.begin(), by_corners.end(), 0);
-  tbb::parallel_sort(by_corners.begin(), by_corners.end(),
-                     [&](int32_t a, int32_t b) {
-                       const Triangle ka = corner_set(a), kb = corner_set(b);
-                       return ka != kb ? ka < kb : a < b;
-                     });
+  {
+    std::vector<int32_t> next(start.begin(), start.end() - 1);
+    for (int32_t f = 0; f < nf; ++f) by_corners[next[corner_set(f)[0]]++] = f;
+  }
   std::vector<uint8_t> drop(tri.size(), 0);  // 1 duplicate, 2 zero area
-  for (size_t k = 1; k < by_corners.size(); ++k) {
-    if (corner_set(by_corners[k]) == corner_set(by_corners[k - 1])) {
-      drop[by_corners[k]] = 1;
+  for (size_t v = 0; v + 1 < start.size(); ++v) {
+    const auto first = by_corners.begin() + start[v];
+    const auto last = by_corners.begin() + start[v + 1];
+    std::sort(first, last, [&](int32_t a, int32_t b) {
+      const Triangle ka = corner_set(a), kb = corner_set(b);
+      return ka != kb ? ka < kb : a < b;
+    });
+    for (auto it = first; it != last && it + 1 != last; ++it) {
+      if (corner_set(it[1]) == corner_set(it[0])) drop[it[1]] = 1;
     }
   }
   by_corners = {};
+  start = {};
   tbb::parallel_for(size_t{0}, tri.size(), [&](size_t f) {
     if (ZeroArea(out->vertices, tri[f])) drop[f] = 2;
   });
