@@ -723,10 +723,7 @@ def test_fill_job_reports_phases_and_keeps_a_stopped_fill(address):
                                    holes_total=10, eta_ms=2500)) == \
         "3 of 10 holes, about 3 s left"
     client = dot.connection.client(prefs())
-    squares = [(i, i + 16, j, j + 16) for i in range(6, 290, 29)
-               for j in range(6, 290, 29)]
-    v, f = shapes.grid_with_holes(300, squares)
-    v[:, 2] = [3 * math.sin(x / 7) * math.cos(y / 9) for x, y, _ in v]
+    v, f = shapes.wavy_grid_with_holes()
     seen = []
     client.fill_patches(v, f, skip_longest=True, progress=seen.append)
     start = next(p.elapsed_ms for p in seen if p.phase == "holes")

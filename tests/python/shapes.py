@@ -83,6 +83,17 @@ _BUMPS = [
     -0.13, -1.22, 1.4, 1.21, 1.0, 1.33, -0.9, -0.53, 0.18, -0.83]
 
 
+def wavy_grid_with_holes():
+    """A wavy 300 x 300 grid with 100 square holes of 64 edges (and its
+    rim): a fill of a few hundred ms whose holes phase a time budget can
+    cut."""
+    squares = [(i, i + 16, j, j + 16) for i in range(6, 290, 29)
+               for j in range(6, 290, 29)]
+    v, f = grid_with_holes(300, squares)
+    v[:, 2] = 3 * np.sin(v[:, 0] / 7) * np.cos(v[:, 1] / 9)
+    return v, f
+
+
 def bumpy_grid_with_hole():
     """A 10 x 10 grid with random heights and a 4 x 4-cell hole (16 edges)
     besides its rim. The hole has no Delaunay triangulation: FillHoles

@@ -13,7 +13,7 @@ import dot_client
 from dot_client import wire
 from dot_client._proto.dot.v1 import triangulation_pb2 as pb
 from shapes import (border_edges, box_with_hole, bumpy_grid_with_hole,
-                    grid_with_hole, grid_with_holes)
+                    grid_with_hole, grid_with_holes, wavy_grid_with_holes)
 
 
 def test_fill_a_box(client):
@@ -306,18 +306,8 @@ def test_timeout_and_cancel(server, client):
     assert client.fill_holes(small_v, small_f, skip_longest=True).report.filled
 
 
-def _holey_grid():
-    """A wavy 300 x 300 grid with 100 square holes of 64 edges, and its
-    rim."""
-    squares = [(i, i + 16, j, j + 16) for i in range(6, 290, 29)
-               for j in range(6, 290, 29)]
-    v, f = grid_with_holes(300, squares)
-    v[:, 2] = 3 * np.sin(v[:, 0] / 7) * np.cos(v[:, 1] / 9)
-    return v, f
-
-
 def test_progress_reports_the_phases_in_order(client):
-    v, f = _holey_grid()
+    v, f = wavy_grid_with_holes()
     seen = []
     r = client.fill_holes(v, f, skip_longest=True, stage="triangulate",
                           progress=seen.append)
@@ -332,7 +322,7 @@ def test_progress_reports_the_phases_in_order(client):
 
 
 def test_a_stopped_fill_keeps_the_holes_it_finished(client):
-    v, f = _holey_grid()
+    v, f = wavy_grid_with_holes()
     seen = []
     client.fill_holes(v, f, skip_longest=True, progress=seen.append)
     start = next(p.elapsed_ms for p in seen if p.phase == "holes")

@@ -27,13 +27,13 @@ PolygonSoup Square() {
 
 TEST(MeshRepairTest, MergesDropsAndReorientsCountingEach) {
   PolygonSoup s = Square();
-  s.vertices.push_back({1, 1, 0});         // 4 duplicates 2
-  s.faces = {{0, 1, 2}, {0, 4, 3}};        // the second uses the duplicate
-  s.faces.push_back({0, 1, 2});            // duplicate face
-  s.faces.push_back({1, 1, 2});     // repeated corner
-  s.vertices.push_back({2, 0, 0});  // 5: collinear with 0 and 1
-  s.faces.push_back({0, 1, 5});     // zero area
-  s.faces.push_back({1, 2, 5});     // runs 1 -> 2 like face 0: flipped
+  s.vertices.push_back({1, 1, 0});   // 4 duplicates 2
+  s.faces = {{0, 1, 2}, {0, 4, 3}};  // the second uses the duplicate
+  s.faces.push_back({0, 1, 2});      // duplicate face
+  s.faces.push_back({1, 1, 2});      // repeated corner
+  s.vertices.push_back({2, 0, 0});   // 5: collinear with 0 and 1
+  s.faces.push_back({0, 1, 5});      // zero area
+  s.faces.push_back({1, 2, 5});      // runs 1 -> 2 like face 0: flipped
   MeshData m;
   RepairReport r;
   ASSERT_TRUE(RepairMesh(s, &m, &r).ok());
