@@ -726,13 +726,10 @@ def test_fill_job_reports_phases_and_keeps_a_stopped_fill(address):
     v, f = shapes.wavy_grid_with_holes()
     seen = []
     client.fill_patches(v, f, skip_longest=True, progress=seen.append)
-    start = next(p.elapsed_ms for p in seen if p.phase == "holes")
-    end = max(p.elapsed_ms for p in seen)
     stopped = []
-    for fraction in (0.3, 0.5, 0.7):
+    for budget in shapes.holes_phase_budgets(seen):
         options = dot.connection.dot_client.FillOptions(
-            skip_longest=True,
-            time_budget_ms=int(start + fraction * (end - start)) + 1)
+            skip_longest=True, time_budget_ms=budget)
         job = operators.Job(operators._fill_work(v, f, options))
         job.run(client)  # what the worker thread runs
         if job.stopped is not None:

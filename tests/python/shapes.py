@@ -94,6 +94,14 @@ def wavy_grid_with_holes():
     return v, f
 
 
+def holes_phase_budgets(progress, fractions=(0.3, 0.5, 0.7)):
+    """Time budgets (ms) that end at these fractions of the holes phase of
+    a fill whose FillProgress reports are `progress`."""
+    start = next(p.elapsed_ms for p in progress if p.phase == "holes")
+    end = max(p.elapsed_ms for p in progress)
+    return [int(start + f * (end - start)) + 1 for f in fractions]
+
+
 def bumpy_grid_with_hole():
     """A 10 x 10 grid with random heights and a 4 x 4-cell hole (16 edges)
     besides its rim. The hole has no Delaunay triangulation: FillHoles

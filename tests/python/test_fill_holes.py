@@ -13,7 +13,8 @@ import dot_client
 from dot_client import wire
 from dot_client._proto.dot.v1 import triangulation_pb2 as pb
 from shapes import (border_edges, box_with_hole, bumpy_grid_with_hole,
-                    grid_with_hole, grid_with_holes, wavy_grid_with_holes)
+                    grid_with_hole, grid_with_holes, holes_phase_budgets,
+                    wavy_grid_with_holes)
 
 
 def test_fill_a_box(client):
@@ -325,13 +326,10 @@ def test_a_stopped_fill_keeps_the_holes_it_finished(client):
     v, f = wavy_grid_with_holes()
     seen = []
     client.fill_holes(v, f, skip_longest=True, progress=seen.append)
-    start = next(p.elapsed_ms for p in seen if p.phase == "holes")
-    end = max(p.elapsed_ms for p in seen)
     # Budgets that end inside the holes phase (timing decides which do:
     # at least one must).
     stops = []
-    for fraction in (0.3, 0.5, 0.7):
-        budget = int(start + fraction * (end - start)) + 1
+    for budget in holes_phase_budgets(seen):
         try:
             client.fill_holes(v, f, skip_longest=True, time_budget_ms=budget)
         except dot_client.FillStopped as stop:
