@@ -36,7 +36,6 @@ class FaceView {
   int32_t back() const { return last_[-1]; }
   const int32_t* begin() const { return first_; }
   const int32_t* end() const { return last_; }
-  std::vector<int32_t> ToVector() const { return {first_, last_}; }
   bool operator==(const std::vector<int32_t>& o) const {
     return size() == o.size() && std::equal(first_, last_, o.begin());
   }
@@ -47,8 +46,8 @@ class FaceView {
 };
 
 // Faces of any corner count in two flat arrays (compressed rows): face f's
-// corners are indices()[offset(f) .. offset(f + 1)). About 20 bytes a
-// triangle, where a vector per face took about 75: a scan's faces fit.
+// corners are a run of indices() (offsets mark where each starts). About 20
+// bytes a triangle, where a vector per face took about 75: a scan's faces fit.
 // Read like a vector of faces (size, [], iteration), built by push_back.
 class FaceList {
  public:
@@ -83,10 +82,7 @@ class FaceList {
     indices_.clear();
     offsets_.assign(1, 0);
   }
-  // Gives the memory back (clear() keeps it).
-  void Release() { *this = FaceList(); }
   size_t corners() const { return indices_.size(); }
-  int64_t offset(size_t f) const { return offsets_[f]; }
   const std::vector<int32_t>& indices() const { return indices_; }
 
   class Iterator {
