@@ -103,7 +103,7 @@ TEST_F(FillHolesCliTest, DryRunListsTheHolesThroughTheServerAndLocally) {
 TEST_F(FillHolesCliTest, SharesTriangulatesOutputNamingAndJsonEnvelope) {
   // A soup with every vertex twice: the repair has something to say.
   const MeshData torus = testing::BumpyTorus(20, 10);
-  PolygonSoup soup{torus.vertices, {}};
+  PolygonSoup soup{torus.vertices, {}, {}};
   soup.vertices.insert(soup.vertices.end(), torus.vertices.begin(),
                        torus.vertices.end());
   const auto n = static_cast<int32_t>(torus.vertices.size());

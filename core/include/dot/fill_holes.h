@@ -110,6 +110,13 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //  repair           FillSoup only: repair the soup first (merge duplicate
 //                   vertices, drop degenerate and duplicate faces, orient);
 //                   false: only triangulate its polygons. Default true.
+//  keep_polygons    FillSoup only: give the result as SoupFillResult::soup,
+//                   shaped as the soup was sent: its polygons kept where no
+//                   patch split them, its attribute channels (normals,
+//                   colours, UVs, ...) carried and interpolated into every
+//                   new corner (fill.mesh is moved there). false: the
+//                   triangles of fill.mesh, attributes dropped with a note.
+//                   Default false.
 //  dry_run          find and select the holes, fill none: every selected
 //                   hole is reported kListed with its size, the mesh is
 //                   returned unchanged. Default false.
@@ -124,6 +131,7 @@ struct FillOptions {
   HoleSelection selection;
   int threads = 0;
   bool repair = true;
+  bool keep_polygons = false;
   bool dry_run = false;
 
   static MetricWeights DefaultFillWeights();

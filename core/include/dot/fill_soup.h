@@ -7,6 +7,7 @@
 #define DOT_FILL_SOUP_H_
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dot/fill_holes.h"
@@ -26,6 +27,12 @@ struct SoupFillResult {
   // The repaired mesh that was filled: the first input_vertices vertices
   // of fill.mesh are its vertices.
   int64_t input_vertices = 0, input_faces = 0;
+  // With FillOptions::keep_polygons, when fill has a mesh: that mesh (moved
+  // here, fill.mesh left empty) with the soup's polygons and attributes
+  // (see the option). Vertex ids as in fill.mesh.
+  PolygonSoup soup;
+  // What was not carried (an attribute channel dropped, and why).
+  std::vector<std::string> notes;
 };
 
 // `soup` is taken by value and released once repaired: a caller that

@@ -20,8 +20,10 @@
 // (17 significant digits in text), or .stl (binary by default: float32, so
 // coordinates are rounded to single precision; ASCII writes every digit,
 // though STL readers, CGAL's included, read single precision); read with CGAL's
-// polygon-soup readers from .off, .obj, .ply (ASCII or binary, either byte
-// order) and .stl (ASCII or binary), polygons triangulated.
+// polygon-soup reader from .stl (ASCII or binary), CGAL's OFF scanner for
+// .off, and our own readers for .obj and .ply (ASCII or binary, either byte
+// order; they carry attributes, mesh_io/mesh_formats.h), polygons
+// triangulated.
 #ifndef DOT_IO_H_
 #define DOT_IO_H_
 
@@ -56,7 +58,20 @@ Status WriteMesh(std::ostream& out, const std::string& format,
 // A mesh as read: faces of any size, nothing merged or dropped.
 // Format from the extension (.off, .obj, .ply, .stl); kInvalidArgument names
 // the file and what is wrong with it.
-Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out);
+// Attributes (normals, colours, UVs) are read from OBJ and PLY into the
+// soup's channels (see PolygonSoup); what a file has that is not kept
+// (materials, per-face colours, other elements) is named in `notes`.
+Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
+                           std::vector<std::string>* notes = nullptr);
+// A soup with its polygons and attribute channels, format from the
+// extension (.obj, .ply, .off, .stl; OFF and STL keep no attributes, and
+// STL no polygons): a channel a format cannot hold is named in `notes`.
+Status WriteSoup(std::ostream& out, const std::string& format,
+                 const PolygonSoup& soup, bool ascii = false,
+                 std::vector<std::string>* notes = nullptr);
+Status WriteSoupFile(const std::string& path, const PolygonSoup& soup,
+                     bool ascii = false,
+                     std::vector<std::string>* notes = nullptr);
 // A triangle mesh: ReadPolygonSoupFile, then polygons with more than three
 // corners triangulated (DOT with the area metric over their planar CDT; a
 // fan where that fails). No repair: see dot/mesh_repair.h.

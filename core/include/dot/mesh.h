@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "dot/geometry.h"
@@ -111,14 +112,33 @@ class FaceList {
   std::vector<int64_t> offsets_ = {0};
 };
 
+// Data a file carries besides positions: normals, colours, texture
+// coordinates, or any other numbers, `dims` floats an entry. An entry per
+// vertex (`indices` empty: entry v is vertex v's), or indexed per face
+// corner as OBJ does (`indices[c]` is the entry of corner c, in the order of
+// FaceList::indices()): a seam is a vertex whose corners name entries of
+// different values. Names the readers give: "normal" (3), "color" (RGB or
+// RGBA in [0, 1]), "uv" (2); a PLY vertex property of another name keeps it.
+struct AttributeChannel {
+  std::string name;
+  int dims = 0;
+  std::vector<float> values;     // dims per entry
+  std::vector<int32_t> indices;  // per face corner, or empty: per vertex
+
+  bool per_corner() const { return !indices.empty(); }
+  size_t entries() const { return dims > 0 ? values.size() / dims : 0; }
+  const float* entry(size_t e) const { return values.data() + e * dims; }
+};
+
 struct PolygonSoup {
   std::vector<Vec3> vertices;
   FaceList faces;
+  std::vector<AttributeChannel> attributes;  // none unless the file had them
 };
 
 // `mesh` as a soup of its triangles (what FillSoup and the wire take).
 inline PolygonSoup ToSoup(const MeshData& mesh) {
-  PolygonSoup soup{mesh.vertices, {}};
+  PolygonSoup soup{mesh.vertices, {}, {}};
   soup.faces.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles) soup.faces.push_back(t);
   return soup;

@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "fill/soup_output.h"
+
 namespace dot {
 
 SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
@@ -24,6 +26,22 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
       return out;
     }
   }
+  out.fill.status = CheckAttributes(soup);
+  if (!out.fill.status.ok()) return out;
+  // What keep_polygons needs of the soup once it is repaired; the rest of
+  // it is released by the repair.
+  FaceList faces_as_sent;
+  std::vector<AttributeChannel> channels = std::move(soup.attributes);
+  soup.attributes = {};
+  if (options.keep_polygons && !channels.empty()) faces_as_sent = soup.faces;
+  if (!options.keep_polygons) {
+    for (const AttributeChannel& ch : channels) {
+      out.notes.push_back("attribute '" + ch.name +
+                          "' dropped: the answer is the repaired triangles "
+                          "(keep_polygons carries it)");
+    }
+    channels.clear();
+  }
   if (on_progress) on_progress(FillPhase::kRepair, 0, 0);
   MeshData mesh;
   out.fill.status =
@@ -39,7 +57,16 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   }
   out.input_vertices = static_cast<int64_t>(mesh.vertices.size());
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());
+  SoupTrace trace;
+  if (!channels.empty()) {
+    trace = TraceSoup(faces_as_sent, std::move(channels), out.repair, mesh);
+    faces_as_sent = {};
+  }
   out.fill = FillHoles(std::move(mesh), fill_options, control, on_progress);
+  if (options.keep_polygons && !out.fill.mesh.triangles.empty()) {
+    out.soup = SoupOfFill(&out.fill, out.repair.face_origin, out.input_faces,
+                          std::move(trace), &out.notes);
+  }
   return out;
 }
 

@@ -9,7 +9,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "dot/control.h"
 #include "mesh/normals.h"
+#include "mesh_io/mesh_formats.h"
+#include "mesh_io/polygon_triangles.h"
 
 namespace dot {
 namespace {
@@ -378,6 +381,73 @@ Status WriteMesh(std::ostream& out, const std::string& format,
                            "'; use obj, ply, off or stl");
   }
   return written();
+}
+
+Status WriteSoup(std::ostream& out, const std::string& format,
+                 const PolygonSoup& soup, bool ascii,
+                 std::vector<std::string>* notes) {
+  std::vector<std::string> ignored;
+  if (notes == nullptr) notes = &ignored;
+  bool triangles = true;
+  for (FaceView f : soup.faces) triangles = triangles && f.size() == 3;
+  if (format == "obj" || format == "ply" || (format == "off" && !triangles)) {
+    out.precision(17);
+    errno = 0;
+    if (format == "obj") {
+      WriteObjSoup(out, soup, notes);
+    } else if (format == "ply") {
+      WritePlySoup(out, soup, ascii, notes);
+    } else {
+      out << "OFF\n"
+          << soup.vertices.size() << ' ' << soup.faces.size() << " 0\n";
+      for (const Vec3& p : soup.vertices)
+        out << p.x << ' ' << p.y << ' ' << p.z << '\n';
+      for (FaceView f : soup.faces) {
+        out << f.size();
+        for (int32_t v : f) out << ' ' << v;
+        out << '\n';
+      }
+    }
+    out.flush();
+    if (!out) {
+      return InvalidArgument(
+          std::string("failed writing the mesh") +
+          (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+    }
+  } else {
+    // OFF of triangles and STL: the triangle writer (STL has no polygons:
+    // they are triangulated as the readers do).
+    MeshData mesh{soup.vertices, {}};
+    for (FaceView f : soup.faces) {
+      const Status s =
+          TriangulatePolygon(soup.vertices, f, Control{}, &mesh.triangles);
+      if (!s.ok()) return s;
+    }
+    const Status s = WriteMesh(out, format, mesh, ascii);
+    if (!s.ok()) return s;
+  }
+  if (format == "off" || format == "stl") {
+    for (const AttributeChannel& ch : soup.attributes) {
+      notes->push_back("attribute '" + ch.name + "' not written: " + format +
+                       " has no place for it (PLY and OBJ keep it)");
+    }
+  }
+  return OkStatus();
+}
+
+Status WriteSoupFile(const std::string& path, const PolygonSoup& soup,
+                     bool ascii, std::vector<std::string>* notes) {
+  const std::string ext = Extension(path);
+  if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl") {
+    return InvalidArgument("cannot tell the mesh format of '" + path +
+                           "'; name it .obj, .ply, .off or .stl");
+  }
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    return InvalidArgument("cannot write '" + path +
+                           "': " + std::strerror(errno));
+  }
+  return WriteSoup(out, ext, soup, ascii, notes);
 }
 
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,

@@ -18,6 +18,7 @@
 
 #include "dot/io.h"
 #include "dot/triangulate.h"
+#include "mesh_io/mesh_formats.h"
 #include "mesh_io/polygon_triangles.h"
 #include "util/run_control.h"
 
@@ -380,7 +381,8 @@ Status TriangulatePolygon(const std::vector<Vec3>& vertices, FaceView f,
   return OkStatus();
 }
 
-Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
+Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
+                           std::vector<std::string>* notes) {
   *out = {};
   const std::string ext = LowerExtension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
@@ -394,8 +396,10 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out) {
     const Status header = CheckPlyHeader(path);
     if (!header.ok()) return header;
   }
-  if (ext == ".off") {
-    const Status s = ReadOff(path, out);
+  if (ext == ".off" || ext == ".ply" || ext == ".obj") {
+    const Status s = ext == ".off"   ? ReadOff(path, out)
+                     : ext == ".ply" ? ReadPlyMesh(path, out, notes)
+                                     : ReadObjMesh(path, out, notes);
     if (!s.ok()) return s;
   } else {
     const Status s = ReadWithCgal(path, ext, out);

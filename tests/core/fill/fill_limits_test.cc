@@ -88,7 +88,8 @@ TEST(FillLimitsTest, EmptyOrAllDegenerateMeshesAreRefused) {
   EXPECT_EQ(empty.status.code, StatusCode::kInvalidArgument);
   EXPECT_NE(empty.status.message.find("no faces"), std::string::npos);
   PolygonSoup soup{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}},
-                   {{0, 1, 2}, {0, 3, 1}, {1, 1, 2}}};
+                   {{0, 1, 2}, {0, 3, 1}, {1, 1, 2}},
+                   {}};
   MeshData repaired;
   RepairReport report;
   const Status s = RepairMesh(soup, &repaired, &report);

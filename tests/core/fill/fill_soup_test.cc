@@ -19,7 +19,7 @@ namespace {
 // used by the odd faces): a soup that needs its repair.
 PolygonSoup DuplicatedSoup() {
   const MeshData m = testing::GridWithSquareHole(8, 3, 5);
-  PolygonSoup soup{m.vertices, {}};
+  PolygonSoup soup{m.vertices, {}, {}};
   soup.vertices.insert(soup.vertices.end(), m.vertices.begin(),
                        m.vertices.end());
   const auto n = static_cast<int32_t>(m.vertices.size());

@@ -22,7 +22,9 @@ std::string Temp(const std::string& name) {
 
 // Two triangles of a square sharing the diagonal 0-2.
 PolygonSoup Square() {
-  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}};
+  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+          {{0, 1, 2}, {0, 2, 3}},
+          {}};
 }
 
 TEST(MeshRepairTest, MergesDropsAndReorientsCountingEach) {
@@ -51,7 +53,7 @@ TEST(MeshRepairTest, MergesDropsAndReorientsCountingEach) {
 
 TEST(MeshRepairTest, FlippedFacesAreTurnedToAgreeAndClosedMeshesOutward) {
   MeshData torus = testing::BumpyTorus(12, 8);
-  PolygonSoup s{torus.vertices, {}};
+  PolygonSoup s{torus.vertices, {}, {}};
   for (size_t f = 0; f < torus.triangles.size(); ++f) {
     Triangle t = torus.triangles[f];
     // Flip every face: the torus turns inside out; and a few again.
