@@ -37,7 +37,7 @@ struct FillFlags {
   bool absolute_weights = false;
   double density = 0;
   int fairing_continuity = 1;
-  bool no_repair = false, ascii = false, dry_run = false;
+  bool no_repair = false, ascii = false, dry_run = false, triangles = false;
   bool json = false, local = false;
   uint32_t time_budget_ms = 0;
 
@@ -138,6 +138,10 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_flag("--dry-run", f->dry_run,
                 "list the holes (size, place, selected or why not) and fill "
                 "none; nothing is written");
+  cmd->add_flag("--triangles", f->triangles,
+                "--local: write the repaired triangles (polygons "
+                "triangulated, attributes dropped); by default the mesh "
+                "keeps its polygons, normals, colours and UVs");
   cmd->add_flag("--ascii", f->ascii,
                 "write PLY and STL as ASCII (default binary)");
   cmd->add_option("--time-budget-ms", f->time_budget_ms,
@@ -148,8 +152,11 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
 
 // Reads the mesh; stdin goes through a temporary file, since CGAL's readers
 // detect binary PLY/STL from a file.
-Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
-  if (!IsStreamInput(f.input)) return ReadPolygonSoupFile(f.input, soup);
+Status ReadInput(const FillFlags& f, PolygonSoup* soup,
+                 std::vector<std::string>* notes) {
+  if (!IsStreamInput(f.input)) {
+    return ReadPolygonSoupFile(f.input, soup, notes);
+  }
   if (f.stdin_format.empty()) {
     return InvalidArgument("reading a mesh from stdin needs --input-format");
   }
@@ -168,7 +175,7 @@ Status ReadInput(const FillFlags& f, PolygonSoup* soup) {
       tmp << in.rdbuf();
     }
   }
-  Status s = ReadPolygonSoupFile(path, soup);
+  Status s = ReadPolygonSoupFile(path, soup, notes);
   std::remove(path.c_str());
   // Errors name what the user gave, not the temporary copy.
   const std::string shown = f.input == "-" ? "stdin" : "'" + f.input + "'";
@@ -346,14 +353,16 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
     phase("  reading " + f.input);
     clock.Start("read");
     PolygonSoup soup;
-    const Status read = ReadInput(f, &soup);
+    std::vector<std::string> read_notes;
+    const Status read = ReadInput(f, &soup, &read_notes);
     phase("");
     if (!read.ok()) {
       report(kOutcomeInputError, kExitUsage, read.message, false);
       return;
     }
     if (f.local) {
-      o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
+      o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress,
+                    /*keep_polygons=*/!f.triangles);
     } else {
       auto channel = ChannelOrReport(ctx);
       if (!channel) return;
@@ -364,6 +373,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
                      ctx->connection.timeout_s, on_progress);
     }
     phase("");
+    o.notes.insert(o.notes.begin(), read_notes.begin(), read_notes.end());
     if (!o.status.ok() && !o.partial) {
       // A mesh or options the service refuses are unusable input (2).
       const int code =
@@ -386,7 +396,10 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
     }
     phase("  writing " + target.Name());
     clock.Start("write");
-    Status w = WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
+    Status w =
+        o.as_sent
+            ? WriteSoup(sink.stream(), target.format, o.soup, f.ascii, &o.notes)
+            : WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
     phase("");
     clock.Start("");
     if (ctx->verbose) std::cerr << "phases: " << clock.Summary() << "\n";
@@ -428,6 +441,7 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       text << "  stopped early: " << stopped << "\n";
     }
     for (const std::string& note : FillNotes(r)) text << "  " << note << "\n";
+    for (const std::string& note : o.notes) text << "  note: " << note << "\n";
   });
 }
 

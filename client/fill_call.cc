@@ -21,7 +21,8 @@ constexpr size_t kRequestBytes = 1 << 20;
 }  // namespace
 
 FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
-                      PolygonSoup soup, const FillProgressFn& on_progress) {
+                      PolygonSoup soup, const FillProgressFn& on_progress,
+                      bool keep_polygons) {
   const auto t0 = Clock::now();
   FillOutcome out;
   FillOptions options;
@@ -50,7 +51,10 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
       on_progress(clock.Report(phase, done, total));
     };
   }
+  options.keep_polygons =
+      keep_polygons && answer == v1::FILL_ANSWER_MESH && !options.dry_run;
   SoupFillResult r = FillSoup(std::move(soup), options, control, on_phase);
+  out.notes = std::move(r.notes);
   out.status = wire::ToGrpcStatus(r.fill.status);
   if (r.fill.status.code == StatusCode::kDeadlineExceeded) {
     out.status =
@@ -66,6 +70,9 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
                            static_cast<size_t>(r.input_faces), &out.report);
     if (answer == v1::FILL_ANSWER_PATCHES) {
       out.patches = PatchesAsSent(r, sent_vertices);
+    } else if (options.keep_polygons) {
+      out.soup = std::move(r.soup);
+      out.as_sent = true;
     } else {
       out.mesh = std::move(r.fill.mesh);
     }
@@ -79,6 +86,11 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        double timeout_s, const FillProgressFn& on_progress) {
   const auto t0 = Clock::now();
   FillOutcome out;
+  for (const AttributeChannel& ch : mesh.attributes) {
+    out.notes.push_back("attribute '" + ch.name +
+                        "' dropped: a server answers with the repaired "
+                        "triangles (--local keeps attributes and polygons)");
+  }
   grpc::ClientContext context;
   context.set_deadline(
       std::chrono::system_clock::now() +
@@ -189,6 +201,7 @@ std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
   e.latency_ms = o.latency_ms;
   const bool answered = called && (o.status.ok() || o.partial);
   if (answered) e.notes = FillNotes(o.report);
+  e.notes.insert(e.notes.end(), o.notes.begin(), o.notes.end());
   e.fields = {{"report", answered ? ProtoJson(o.report) : std::string("null")}};
   return e.ToJson();
 }

@@ -24,6 +24,13 @@ struct FillOutcome {
   v1::FillReport report;           // valid when status is OK or partial
   MeshData mesh;                   // the filled mesh (FILL_ANSWER_MESH)
   std::vector<SentPatch> patches;  // FILL_ANSWER_PATCHES
+  // FillLocal with keep_polygons: the filled mesh shaped as it was sent
+  // (polygons and attributes kept), in place of `mesh`.
+  PolygonSoup soup;
+  bool as_sent = false;
+  // What was not carried (attributes dropped, a file's unread parts): for
+  // the text output and the JSON's "notes", after FillNotes'.
+  std::vector<std::string> notes;
   double latency_ms = 0;
 };
 
@@ -38,10 +45,15 @@ using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 // unless options.no_repair, then FillHoles), with the server's defaults.
 // The soup is taken by value: move it in to hold the mesh once.
 // `on_progress` gets the same reports a server sends, one at a time.
+// `keep_polygons` (FillOptions::keep_polygons): the answer is `soup`, with
+// the input's polygons and attributes, instead of `mesh`.
 FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
                       PolygonSoup mesh,
-                      const FillProgressFn& on_progress = nullptr);
+                      const FillProgressFn& on_progress = nullptr,
+                      bool keep_polygons = false);
 
+// The server answers with triangles: the mesh's attributes are not sent
+// (a note names each).
 FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        const v1::FillOptions& options, const PolygonSoup& mesh,
                        double timeout_s,

@@ -78,6 +78,65 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   EXPECT_TRUE(loops.empty());
 }
 
+// A scan as modelling tools export it: quads with colours and UVs.
+TEST_F(FillHolesCliTest, LocalFillKeepsQuadsColoursAndUvs) {
+  {
+    std::ofstream obj(Path("quads.obj"));
+    const int n = 8;
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; j <= n; ++j) {
+        obj << "v " << i << ' ' << j << " 0 " << i / 8.0 << " 0.5 " << j / 8.0
+            << "\nvt " << i / 8.0 << ' ' << j / 8.0 << '\n';
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        if (i >= 2 && i < 6 && j >= 2 && j < 6) continue;  // the hole
+        const int a = i * (n + 1) + j + 1, b = a + n + 1;
+        obj << "f " << a << '/' << a << ' ' << b << '/' << b << ' ' << b + 1
+            << '/' << b + 1 << ' ' << a + 1 << '/' << a + 1 << '\n';
+      }
+    }
+  }
+  // The outer border is a hole too: --skip-longest leaves it open.
+  auto r = Dotctl("fill-holes --local --skip-longest " + Path("quads.obj") +
+                  " -o " + Path("kept.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  PolygonSoup kept;
+  ASSERT_TRUE(ReadPolygonSoupFile(Path("kept.obj"), &kept).ok());
+  size_t quads = 0, triangles = 0;
+  for (FaceView f : kept.faces) (f.size() == 4 ? quads : triangles) += 1;
+  EXPECT_EQ(quads, 48u);  // every quad of the input
+  EXPECT_GT(triangles, 0u);
+  ASSERT_EQ(kept.attributes.size(), 2u);  // color and uv, both carried
+  for (const AttributeChannel& ch : kept.attributes) {
+    EXPECT_GT(ch.entries(), 81u) << ch.name << ": new entries for new corners";
+    for (float x : ch.values) {
+      EXPECT_GE(x, 0.0f) << ch.name;
+      EXPECT_LE(x, 1.0f) << ch.name;
+    }
+  }
+  // PLY too; --triangles gives the repaired triangles, attributes dropped
+  // with a note; so does a server.
+  r = Dotctl("fill-holes --local --skip-longest " + Path("quads.obj") +
+             " -q -o " + Path("kept.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  PolygonSoup ply;
+  ASSERT_TRUE(ReadPolygonSoupFile(Path("kept.ply"), &ply).ok());
+  EXPECT_EQ(ply.faces.size(), kept.faces.size());
+  EXPECT_EQ(ply.attributes.size(), 2u);
+  for (const std::string& how : {std::string("--local --triangles "), flag_}) {
+    r = Dotctl("fill-holes --skip-longest " + how + Path("quads.obj") + " -o " +
+               Path("tri.obj"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("note: attribute 'uv' dropped"), std::string::npos)
+        << r.out;
+    PolygonSoup tri;
+    ASSERT_TRUE(ReadPolygonSoupFile(Path("tri.obj"), &tri).ok());
+    for (FaceView f : tri.faces) ASSERT_EQ(f.size(), 3u);
+  }
+}
+
 TEST_F(FillHolesCliTest, DryRunListsTheHolesThroughTheServerAndLocally) {
   auto r = Dotctl("generate holes " + Path("torus.off") +
                   " -k 3 -t 40 --seed 5 -o " + Path("dry.off"));
