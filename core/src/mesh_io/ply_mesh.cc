@@ -409,11 +409,26 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
       source[v] = static_cast<int32_t>(v);
     corner_vertex = soup.faces.indices();
   } else {
+    // Entries of equal value are one (an OBJ names a vt per corner).
+    std::vector<std::vector<int32_t>> canonical(seamed.size());
+    for (size_t s = 0; s < seamed.size(); ++s) {
+      const AttributeChannel& ch = *seamed[s];
+      std::unordered_map<std::string, int32_t> first;
+      canonical[s].resize(ch.entries());
+      for (size_t e = 0; e < ch.entries(); ++e) {
+        const std::string bytes(reinterpret_cast<const char*>(ch.entry(e)),
+                                sizeof(float) * ch.dims);
+        canonical[s][e] =
+            first.try_emplace(bytes, static_cast<int32_t>(e)).first->second;
+      }
+    }
     std::map<std::pair<int32_t, std::vector<int32_t>>, int32_t> written;
     const std::vector<int32_t>& corners = soup.faces.indices();
     for (size_t c = 0; c < corners.size(); ++c) {
       std::vector<int32_t> k;
-      for (const AttributeChannel* ch : seamed) k.push_back(ch->indices[c]);
+      for (size_t s = 0; s < seamed.size(); ++s) {
+        k.push_back(canonical[s][seamed[s]->indices[c]]);
+      }
       auto [it, fresh] = written.try_emplace(
           {corners[c], k}, static_cast<int32_t>(source.size()));
       if (fresh) {
