@@ -36,7 +36,13 @@ class AnswerWriter {
       }
       return false;
     }
-    if (!force && now - last_progress_ < interval) return false;
+    // The first report is never held back: the steady clock counts from
+    // boot, so on a machine up for less than `interval` a zero start
+    // would hold it (seen on a machine up for 20 minutes).
+    if (!force && any_progress_ && now - last_progress_ < interval) {
+      return false;
+    }
+    any_progress_ = true;
     last_progress_ = now;
     writing_ = true;
     return true;
@@ -90,11 +96,12 @@ class AnswerWriter {
 
  private:
   std::mutex mu_;
-  bool writing_ = false;   // a write is in flight
-  bool kept_ = false;      // a forced report waits for it (ClaimProgress)
-  bool job_done_ = false;  // on_done has run
-  bool broken_ = false;    // a write failed
-  bool closed_ = false;    // the reactor finishes the call
+  bool writing_ = false;       // a write is in flight
+  bool kept_ = false;          // a forced report waits for it (ClaimProgress)
+  bool job_done_ = false;      // on_done has run
+  bool broken_ = false;        // a write failed
+  bool closed_ = false;        // the reactor finishes the call
+  bool any_progress_ = false;  // a report was claimed
   Clock::time_point last_progress_{};
 };
 

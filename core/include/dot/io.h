@@ -63,6 +63,11 @@ Status WriteMesh(std::ostream& out, const std::string& format,
 // (materials, per-face colours, other elements) is named in `notes`.
 Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
                            std::vector<std::string>* notes = nullptr);
+// kInvalidArgument naming the first attribute channel that does not fit
+// the soup (dims outside 1..16, a value count that is not whole entries, a
+// non-finite value, an entry count other than the vertex count, corner
+// indices that do not match the faces or name no entry).
+Status CheckAttributes(const PolygonSoup& soup);
 // A soup with its polygons and attribute channels, format from the
 // extension (.obj, .ply, .off, .stl; OFF and STL keep no attributes, and
 // STL no polygons): a channel a format cannot hold is named in `notes`.

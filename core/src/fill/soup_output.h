@@ -33,10 +33,6 @@
 
 namespace dot {
 
-// kInvalidArgument naming the first channel whose shape does not fit the
-// soup (dims, value count, an index out of range).
-Status CheckAttributes(const PolygonSoup& soup);
-
 // What of the soup as sent outlives its repair: the channels' values and,
 // per repaired triangle corner, the entry each channel gives it; the
 // repaired triangles (a split face's corners, for its pieces).

@@ -411,6 +411,55 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
                              " has a non-finite coordinate");
     }
   }
+  const Status attributes = CheckAttributes(*out);
+  if (!attributes.ok()) {
+    return InvalidArgument("'" + path + "': " + attributes.message);
+  }
+  return OkStatus();
+}
+
+Status CheckAttributes(const PolygonSoup& soup) {
+  for (const AttributeChannel& ch : soup.attributes) {
+    const std::string name = "attribute '" + ch.name + "'";
+    if (ch.dims < 1 || ch.dims > 16) {
+      return InvalidArgument(name + " has " + std::to_string(ch.dims) +
+                             " values an entry; 1 to 16 are allowed");
+    }
+    if (ch.values.size() % ch.dims != 0) {
+      return InvalidArgument(name + " has " + std::to_string(ch.values.size()) +
+                             " values, not a multiple of its " +
+                             std::to_string(ch.dims) + " an entry");
+    }
+    for (size_t i = 0; i < ch.values.size(); ++i) {
+      if (!std::isfinite(ch.values[i])) {
+        return InvalidArgument(name + ": entry " + std::to_string(i / ch.dims) +
+                               " is not finite");
+      }
+    }
+    if (!ch.per_corner()) {
+      if (ch.entries() != soup.vertices.size()) {
+        return InvalidArgument(
+            name + " has " + std::to_string(ch.entries()) + " entries for " +
+            std::to_string(soup.vertices.size()) + " vertices");
+      }
+      continue;
+    }
+    if (ch.indices.size() != soup.faces.corners()) {
+      return InvalidArgument(
+          name + " has " + std::to_string(ch.indices.size()) +
+          " corner indices for " + std::to_string(soup.faces.corners()) +
+          " face corners");
+    }
+    for (size_t c = 0; c < ch.indices.size(); ++c) {
+      if (ch.indices[c] < 0 ||
+          static_cast<size_t>(ch.indices[c]) >= ch.entries()) {
+        return InvalidArgument(name + ": corner " + std::to_string(c) +
+                               " names entry " + std::to_string(ch.indices[c]) +
+                               ", outside 0.." +
+                               std::to_string(int64_t(ch.entries()) - 1));
+      }
+    }
+  }
   return OkStatus();
 }
 

@@ -196,6 +196,21 @@ Status ReadPlyMesh(const std::string& path, PolygonSoup* out,
     }
   }
   if (format < 0) return refuse("no format line before end_header");
+  // Each item of an element takes at least a byte per property (a list, at
+  // least its count): a header cannot make the reader allocate more than
+  // the file holds.
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  for (const Element& e : elements) {
+    const uint64_t per_item = std::max<size_t>(1, e.properties.size());
+    if (ec || e.count > bytes / per_item) {
+      return refuse("element '" + e.name + "' claims " +
+                    std::to_string(e.count) + " items of " +
+                    std::to_string(per_item) +
+                    " properties, more than the file's " +
+                    std::to_string(bytes) + " bytes hold");
+    }
+  }
   Values values(in, format);
   std::vector<float> uv_corners;  // face texcoord lists
   bool corner_uvs = true;
