@@ -70,7 +70,7 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
                            static_cast<size_t>(r.input_faces), &out.report);
     if (answer == v1::FILL_ANSWER_PATCHES) {
       out.patches = PatchesAsSent(r, sent_vertices);
-    } else if (options.keep_polygons) {
+    } else if (!r.soup.faces.empty()) {
       out.soup = std::move(r.soup);
       out.as_sent = true;
     } else {

@@ -27,9 +27,10 @@ struct SoupFillResult {
   // The repaired mesh that was filled: the first input_vertices vertices
   // of fill.mesh are its vertices.
   int64_t input_vertices = 0, input_faces = 0;
-  // With FillOptions::keep_polygons, when fill has a mesh: that mesh (moved
-  // here, fill.mesh left empty) with the soup's polygons and attributes
-  // (see the option). Vertex ids as in fill.mesh.
+  // With FillOptions::keep_polygons, when fill has a mesh and the soup had
+  // polygons or attributes to keep: that mesh (moved here, fill.mesh left
+  // empty) with them (see the option); vertex ids as in fill.mesh. Empty
+  // otherwise (a soup of plain triangles is answered in fill.mesh alone).
   PolygonSoup soup;
   // What was not carried (an attribute channel dropped, and why).
   std::vector<std::string> notes;

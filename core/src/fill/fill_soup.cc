@@ -33,7 +33,12 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   FaceList faces_as_sent;
   std::vector<AttributeChannel> channels = std::move(soup.attributes);
   soup.attributes = {};
-  if (options.keep_polygons && !channels.empty()) faces_as_sent = soup.faces;
+  // A soup of plain triangles has nothing to keep: its answer stays
+  // fill.mesh, without a second copy of a scan.
+  bool polygons = false;
+  for (FaceView f : soup.faces) polygons = polygons || f.size() > 3;
+  const bool keep = options.keep_polygons && (polygons || !channels.empty());
+  if (keep && !channels.empty()) faces_as_sent = soup.faces;
   if (!options.keep_polygons) {
     for (const AttributeChannel& ch : channels) {
       out.notes.push_back("attribute '" + ch.name +
@@ -63,7 +68,7 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
     faces_as_sent = {};
   }
   out.fill = FillHoles(std::move(mesh), fill_options, control, on_progress);
-  if (options.keep_polygons && !out.fill.mesh.triangles.empty()) {
+  if (keep && !out.fill.mesh.triangles.empty()) {
     out.soup = SoupOfFill(&out.fill, out.repair.face_origin, out.input_faces,
                           std::move(trace), &out.notes);
   }

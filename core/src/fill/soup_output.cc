@@ -4,6 +4,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -111,6 +112,7 @@ class PatchInterpolator {
                    std::vector<int32_t>* entries) {
     const std::vector<std::vector<std::pair<int, int32_t>>> arcs =
         Arcs(*ch, across);
+    if (arcs.empty()) return;  // no face across: see CarryThroughFill
     // Nearest arc of each patch face: least sum of corner hops.
     std::vector<std::vector<int>> hops;
     for (const auto& arc : arcs) hops.push_back(Hops(arc));
@@ -199,7 +201,9 @@ class PatchInterpolator {
       }
     }
     for (size_t i = 0; i < n; ++i) {
-      if (!seen[i]) add(i);  // a rim that does not chain: one more arc
+      if (seen[i]) continue;  // a rim that does not chain (pinched): a new arc
+      arcs.emplace_back();
+      for (size_t j = i; j < n && !seen[j]; j = next[j]) add(j);
     }
     // A vertex named twice in an arc keeps its first entry; arcs without
     // any value are dropped.
@@ -399,13 +403,19 @@ bool CarryThroughFill(const FillResult& fill, int64_t input_faces,
       const int32_t f = h.patch.split_faces[k];
       const Triangle& orig = trace->triangles[f];
       const auto& pieces = h.patch.pieces[k];
+      // The split face's own entries, before its first piece takes its place.
+      std::vector<std::array<int32_t, 3>> own(nc);
+      for (size_t c = 0; c < nc; ++c) {
+        const std::vector<int32_t>& e = (*corners)[c];
+        own[c] = {e[3 * f], e[3 * f + 1], e[3 * f + 2]};
+      }
       for (size_t p = 0; p < pieces.size(); ++p) {
         const size_t at = p == 0 ? static_cast<size_t>(f) : cursor++;
         if (at >= tris.size() || tris[at] != pieces[p]) return false;
         for (size_t c = 0; c < nc; ++c) {
           AttributeChannel* ch = &trace->channels[c];
           std::vector<int32_t>& e = (*corners)[c];
-          const int32_t e0 = e[3 * f], e1 = e[3 * f + 1], e2 = e[3 * f + 2];
+          const auto [e0, e1, e2] = own[c];
           for (int j = 0; j < 3; ++j) {
             const int32_t v = pieces[p][j];
             int32_t entry = v == orig[0]   ? e0
@@ -446,6 +456,24 @@ bool CarryThroughFill(const FillResult& fill, int64_t input_faces,
                                               (*corners)[c][3 * f + kb]));
       }
       patch.Interpolate(&trace->channels[c], across, &(*corners)[c]);
+    }
+  }
+  // A patch with no face across its rim (the mesh's orientation disagrees
+  // with it, as with repair off) has nothing to blend from: its corners get
+  // the channel's mean, so that no corner is left without an entry.
+  for (size_t c = 0; c < nc; ++c) {
+    AttributeChannel* ch = &trace->channels[c];
+    int32_t fallback = kNone;
+    for (int32_t& e : (*corners)[c]) {
+      if (e != kNone) continue;
+      if (fallback == kNone) {
+        const size_t n = ch->entries();
+        std::vector<std::pair<int32_t, double>> w;
+        for (size_t k = 0; k < n; ++k) w.push_back({int32_t(k), 1.0 / n});
+        fallback = AddEntry(
+            ch, n > 0 ? Blend(*ch, w) : std::vector<double>(ch->dims, 0.0));
+      }
+      e = fallback;
     }
   }
   return true;
@@ -596,8 +624,9 @@ PolygonSoup SoupOfFill(FillResult* fill,
     for (int32_t f : h.patch.split_faces) split[f] = true;
   }
   std::vector<std::vector<int32_t>> out_entries(trace.channels.size());
+  std::vector<int32_t> ids;
   auto emit = [&](const std::vector<std::pair<int32_t, size_t>>& polygon) {
-    std::vector<int32_t> ids;
+    ids.clear();
     for (const auto& [v, corner] : polygon) {
       ids.push_back(v);
       for (size_t c = 0; c < out_entries.size(); ++c) {

@@ -182,10 +182,16 @@ void WriteObjSoup(std::ostream& out, const PolygonSoup& soup,
   const AttributeChannel* uv = Find(soup, "uv");
   const AttributeChannel* normal = Find(soup, "normal");
   if (color != nullptr && (color->per_corner() || color->dims < 3)) {
-    notes->push_back(
-        "attribute 'color' not written: OBJ holds colours per "
-        "vertex, and this one has a seam");
+    notes->push_back(color->per_corner()
+                         ? "attribute 'color' not written: OBJ holds colours "
+                           "per vertex, and this one has a seam (PLY keeps it)"
+                         : "attribute 'color' not written: it is not RGB");
     color = nullptr;
+  }
+  if (color != nullptr && color->dims > 3) {
+    notes->push_back(
+        "the alpha of attribute 'color' is not written: OBJ "
+        "holds RGB (PLY keeps it)");
   }
   if (uv != nullptr && uv->dims != 2) uv = nullptr;
   if (normal != nullptr && normal->dims != 3) normal = nullptr;

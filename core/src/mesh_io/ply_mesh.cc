@@ -224,12 +224,20 @@ Status ReadPlyMesh(const std::string& path, PolygonSoup* out,
     std::vector<Target> targets(e.properties.size());
     std::vector<bool> xyz(3, false);
     if (is_vertex) {
+      if (!out->vertices.empty()) return refuse("a second vertex element");
       auto channel = [&](const std::string& name, int dims) {
         for (size_t c = 0; c < out->attributes.size(); ++c) {
           if (out->attributes[c].name == name) return static_cast<int>(c);
         }
         out->attributes.push_back({name, dims, {}, {}});
         return static_cast<int>(out->attributes.size() - 1);
+      };
+      // A property of a channel's own name ("color") stays apart from the
+      // channel made of red, green, blue.
+      auto own_name = [](const std::string& name) {
+        return name == "color" || name == "normal" || name == "uv"
+                   ? "ply_" + name
+                   : name;
       };
       static const std::map<std::string, std::pair<std::string, int>> kKnown = {
           {"nx", {"normal", 0}},    {"ny", {"normal", 1}},
@@ -287,7 +295,7 @@ Status ReadPlyMesh(const std::string& path, PolygonSoup* out,
           t.component = known->second.second;
           if (name == "color") t.scale = 1 / IntegerMax(p.type);
         } else {
-          t.channel = channel(p.name, 1);
+          t.channel = channel(own_name(p.name), 1);
         }
       }
       if (!xyz[0] || !xyz[1] || !xyz[2]) {
@@ -354,7 +362,7 @@ Status ReadPlyMesh(const std::string& path, PolygonSoup* out,
                        std::to_string(static_cast<int>(count)) + " items");
           }
           if (static_cast<int>(i) == vertex_list) {
-            if (x < 0 || x > 2147483647.0) {
+            if (!(x >= 0 && x <= 2147483647.0)) {  // NaN too
               return bad("vertex index " + std::to_string(x) + " is invalid");
             }
             face.push_back(static_cast<int32_t>(x));

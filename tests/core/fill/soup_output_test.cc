@@ -195,6 +195,40 @@ TEST(SoupOutputTest, ASeamThroughTheHoleRunsOnThroughThePatch) {
   EXPECT_GT(right, 0u);
 }
 
+// Edge protection splits faces at the rim: their pieces' new corners are
+// interpolated inside the face, so a linear field stays exact on every
+// corner (at the triangulate stage no other vertex is new).
+TEST(SoupOutputTest, PiecesOfASplitFaceInterpolateInsideIt) {
+  PolygonSoup sent;
+  ASSERT_TRUE(
+      ReadPolygonSoupFile(testing::MeshPath("mech-holes-shark.off"), &sent)
+          .ok());
+  auto field = [](const Vec3& p) { return p.x + 2 * p.y + 3 * p.z; };
+  AttributeChannel linear{"linear", 1, {}, {}};
+  for (const Vec3& p : sent.vertices) {
+    linear.values.push_back(static_cast<float>(field(p)));
+  }
+  sent.attributes = {linear};
+  FillOptions o = Keeping();
+  o.stage = FillStage::kTriangulate;
+  const SoupFillResult r = FillSoup(sent, o);
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  int inserted = 0;
+  for (const HoleReport& h : r.fill.report.holes)
+    inserted += h.boundary_inserted;
+  ASSERT_GT(inserted, 0) << "the shark's hole needs edge protection";
+  const AttributeChannel& out = r.soup.attributes.at(0);
+  size_t c = 0;
+  for (FaceView f : r.soup.faces) {
+    for (int32_t v : f) {
+      const double want = field(r.soup.vertices[v]);
+      EXPECT_NEAR(At(out, c, v)[0], want, 1e-4 * (1 + std::abs(want)))
+          << "corner " << c << " of vertex " << v;
+      ++c;
+    }
+  }
+}
+
 TEST(SoupOutputTest, AttributesThatDoNotFitTheSoupAreRefusedByName) {
   PolygonSoup sent = QuadGridWithHole(4, 1, 2);
   sent.attributes = {{"uv", 2, {0.5f, 0.5f}, {}}};
