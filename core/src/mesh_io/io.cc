@@ -435,34 +435,40 @@ Status WriteSoup(std::ostream& out, const std::string& format,
   return OkStatus();
 }
 
-Status WriteSoupFile(const std::string& path, const PolygonSoup& soup,
-                     bool ascii, std::vector<std::string>* notes) {
-  const std::string ext = Extension(path);
-  if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl") {
+namespace {
+
+// A mesh file opened for writing, its format from the extension.
+Status OpenMeshFile(const std::string& path, std::string* ext,
+                    std::ofstream* out) {
+  *ext = Extension(path);
+  if (*ext != "obj" && *ext != "ply" && *ext != "off" && *ext != "stl") {
     return InvalidArgument("cannot tell the mesh format of '" + path +
                            "'; name it .obj, .ply, .off or .stl");
   }
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
+  out->open(path, std::ios::binary);
+  if (!*out) {
     return InvalidArgument("cannot write '" + path +
                            "': " + std::strerror(errno));
   }
-  return WriteSoup(out, ext, soup, ascii, notes);
+  return OkStatus();
+}
+
+}  // namespace
+
+Status WriteSoupFile(const std::string& path, const PolygonSoup& soup,
+                     bool ascii, std::vector<std::string>* notes) {
+  std::string ext;
+  std::ofstream out;
+  const Status s = OpenMeshFile(path, &ext, &out);
+  return s.ok() ? WriteSoup(out, ext, soup, ascii, notes) : s;
 }
 
 Status WriteMeshFile(const std::string& path, const MeshData& mesh,
                      bool ascii) {
-  const std::string ext = Extension(path);
-  if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl") {
-    return InvalidArgument("cannot tell the mesh format of '" + path +
-                           "'; name it .obj, .ply, .off or .stl");
-  }
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    return InvalidArgument("cannot write '" + path +
-                           "': " + std::strerror(errno));
-  }
-  return WriteMesh(out, ext, mesh, ascii);
+  std::string ext;
+  std::ofstream out;
+  const Status s = OpenMeshFile(path, &ext, &out);
+  return s.ok() ? WriteMesh(out, ext, mesh, ascii) : s;
 }
 
 }  // namespace dot

@@ -460,6 +460,14 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
       }
       corner_vertex.push_back(it->second);
     }
+    // Vertices on no face are written too (with each channel's first entry).
+    std::vector<bool> used(soup.vertices.size(), false);
+    for (int32_t v : corners) used[v] = true;
+    for (size_t v = 0; v < used.size(); ++v) {
+      if (used[v]) continue;
+      source.push_back(static_cast<int32_t>(v));
+      key.emplace_back(seamed.size(), 0);
+    }
     if (source.size() > soup.vertices.size()) {
       notes->push_back(
           "PLY holds attributes per vertex: " +
