@@ -22,9 +22,8 @@ std::string Temp(const std::string& name) {
 
 // Two triangles of a square sharing the diagonal 0-2.
 PolygonSoup Square() {
-  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-          {{0, 1, 2}, {0, 2, 3}},
-          {}};
+  return {
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}, {}};
 }
 
 TEST(MeshRepairTest, MergesDropsAndReorientsCountingEach) {
