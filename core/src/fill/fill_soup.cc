@@ -41,9 +41,9 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   if (keep && !channels.empty()) faces_as_sent = soup.faces;
   if (!options.keep_polygons) {
     for (const AttributeChannel& ch : channels) {
+      if (options.dry_run) break;  // nothing is answered to drop it from
       out.notes.push_back("attribute '" + ch.name +
-                          "' dropped: the answer is the repaired triangles "
-                          "(keep_polygons carries it)");
+                          "' dropped: the answer is the repaired triangles");
     }
     channels.clear();
   }

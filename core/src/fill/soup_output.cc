@@ -2,7 +2,7 @@
 #include "fill/soup_output.h"
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -258,30 +258,35 @@ class PatchInterpolator {
     }
     if (m == 0) return field;
     const int dims = ch->dims;
+    if (weights_.empty()) weights_ = MeanValueWeights();
     using SpMat = Eigen::SparseMatrix<double>;
     std::vector<Eigen::Triplet<double>> entries;
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, dims);
     for (size_t v = 0; v < nv; ++v) {
       const int row = unknown[v];
       if (row < 0) continue;
-      entries.emplace_back(row, row,
-                           static_cast<double>(neighbours_[v].size()));
-      for (int w : neighbours_[v]) {
+      double diagonal = 0;
+      for (const auto& [w, weight] : weights_[v]) {
+        diagonal += weight;
         if (unknown[w] >= 0) {
-          entries.emplace_back(row, unknown[w], -1.0);
+          entries.emplace_back(row, unknown[w], -weight);
         } else {
-          for (int d = 0; d < dims; ++d) rhs(row, d) += ch->entry(field[w])[d];
+          for (int d = 0; d < dims; ++d) {
+            rhs(row, d) += weight * ch->entry(field[w])[d];
+          }
         }
       }
+      entries.emplace_back(row, row, diagonal);
     }
     SpMat a(m, m);
     a.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLDLT<SpMat> ldlt(a);
+    Eigen::SparseLU<SpMat> lu;
+    lu.compute(a);
     Eigen::MatrixXd x;
-    bool solved = ldlt.info() == Eigen::Success;
+    bool solved = lu.info() == Eigen::Success;
     if (solved) {
-      x = ldlt.solve(rhs);
-      solved = ldlt.info() == Eigen::Success && x.allFinite();
+      x = lu.solve(rhs);
+      solved = lu.info() == Eigen::Success && x.allFinite();
     }
     if (!solved) {  // unreachable for a connected patch: the arc's mean
       std::vector<std::pair<int32_t, double>> w;
@@ -300,6 +305,42 @@ class PatchInterpolator {
       field[v] = AddEntry(ch, std::move(value));
     }
     return field;
+  }
+
+  // Floater's mean-value weights, per local vertex (neighbour, weight):
+  // w_ij = (tan(a/2) + tan(b/2)) / |x_i - x_j|, a and b the face angles at
+  // i beside edge ij. Always positive (values stay within the rim's, as
+  // with uniform weights), and a linear field on a flat patch is
+  // reproduced exactly (uniform weights distort UVs there).
+  std::vector<std::vector<std::pair<int, double>>> MeanValueWeights() const {
+    std::vector<std::vector<std::pair<int, double>>> w(vertices_.size());
+    auto add = [&](int i, int j, double weight) {
+      for (auto& [k, x] : w[i]) {
+        if (k == j) {
+          x += weight;
+          return;
+        }
+      }
+      w[i].push_back({j, weight});
+    };
+    for (size_t f = first_; f < first_ + count_; ++f) {
+      const Triangle& t = faces_[f];
+      for (int k = 0; k < 3; ++k) {
+        const int i = local_.at(t[k]), j = local_.at(t[(k + 1) % 3]),
+                  l = local_.at(t[(k + 2) % 3]);
+        const Vec3 u = points_[t[(k + 1) % 3]] - points_[t[k]];
+        const Vec3 v = points_[t[(k + 2) % 3]] - points_[t[k]];
+        const double lu = std::sqrt(Dot(u, u)), lv = std::sqrt(Dot(v, v));
+        const double sin_part = std::sqrt(Dot(Cross(u, v), Cross(u, v)));
+        const double cos_part = lu * lv + Dot(u, v);
+        // tan(angle / 2), bounded for a degenerate corner.
+        const double half_tan =
+            cos_part > 1e-300 ? std::min(sin_part / cos_part, 1e6) : 1e6;
+        if (lu > 0) add(i, j, half_tan / lu);
+        if (lv > 0) add(i, l, half_tan / lv);
+      }
+    }
+    return w;
   }
 
   // Normals of new vertices follow the patch's own faces (area-weighted),
@@ -336,6 +377,7 @@ class PatchInterpolator {
   std::unordered_map<int32_t, int> local_;
   std::vector<int32_t> vertices_;  // local -> mesh id
   std::vector<std::vector<int>> neighbours_;
+  std::vector<std::vector<std::pair<int, double>>> weights_;  // when solved
   std::vector<std::pair<int32_t, int32_t>> rim_;
 };
 

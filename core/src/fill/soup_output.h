@@ -7,7 +7,8 @@
 // How new corners get their values:
 //  - pieces of a face that edge protection split lie in that face: their
 //    new corners are interpolated linearly (barycentric) in it;
-//  - a patch's interior is harmonic (uniform graph Laplacian) with its rim
+//  - a patch's interior is harmonic (mean-value weights: positive, and
+//    exact for a linear field on a flat patch) with its rim
 //    fixed to the values of the faces across the rim, so it blends smoothly
 //    from the hole's border. Where the rim crosses a seam (a rim vertex
 //    whose faces on either side disagree), the rim is cut into arcs of

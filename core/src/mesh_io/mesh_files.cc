@@ -182,7 +182,8 @@ OffItem ItemAt(const std::string& path, std::streamoff offset) {
 }
 
 // Straight into the flat soup: the reader holds no second copy.
-Status ReadOff(const std::string& path, PolygonSoup* out) {
+Status ReadOff(const std::string& path, PolygonSoup* out,
+               std::vector<std::string>* notes) {
   std::error_code ec;
   const auto bytes =
       static_cast<std::size_t>(std::filesystem::file_size(path, ec));
@@ -227,14 +228,28 @@ Status ReadOff(const std::string& path, PolygonSoup* out) {
   }
   std::vector<Vec3>& points = out->vertices;
   points.resize(scanner.size_of_vertices());
+  // NOFF normals, COFF colours and STOFF texture coordinates, per vertex.
+  AttributeChannel normal{"normal", 3, {}, {}}, color{"color", 3, {}, {}},
+      uv{"uv", 2, {}, {}};
   for (std::size_t v = 0; v < points.size(); ++v) {
-    double x = 0, y = 0, z = 0, w = 1, ignored = 0;
+    double x = 0, y = 0, z = 0, w = 1, nx = 0, ny = 0, nz = 0, s = 0, t = 0;
     unsigned char r = 0, g = 0, b = 0;
     begin_item();
     scanner.scan_vertex(x, y, z, w);
-    if (scanner.has_normals()) scanner.scan_normal(ignored, ignored, ignored);
-    if (scanner.has_vcolors()) scanner.scan_color(r, g, b);
-    if (scanner.has_textures()) scanner.scan_texture(ignored, ignored);
+    if (scanner.has_normals()) {
+      scanner.scan_normal(nx, ny, nz);
+      normal.values.insert(normal.values.end(),
+                           {float(nx), float(ny), float(nz)});
+    }
+    if (scanner.has_vcolors()) {
+      scanner.scan_color(r, g, b);
+      color.values.insert(color.values.end(),
+                          {r / 255.0f, g / 255.0f, b / 255.0f});
+    }
+    if (scanner.has_textures()) {
+      scanner.scan_texture(s, t);
+      uv.values.insert(uv.values.end(), {float(s), float(t)});
+    }
     if (!in.good()) {
       const std::vector<std::string> words = read_item();
       std::string bad;
@@ -309,6 +324,14 @@ Status ReadOff(const std::string& path, PolygonSoup* out) {
       unsigned char r = 0, g = 0, b = 0;
       scanner.scan_color(r, g, b);
     }
+  }
+  for (AttributeChannel* ch : {&normal, &color, &uv}) {
+    if (!ch->values.empty()) out->attributes.push_back(std::move(*ch));
+  }
+  if (scanner.has_fcolors() && notes != nullptr) {
+    notes->push_back("'" + path +
+                     "': per-face colours are skipped (dot "
+                     "keeps per-vertex and per-corner attributes)");
   }
   if (in.fail() && !in.eof()) {
     read_item();
@@ -397,7 +420,7 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
     if (!header.ok()) return header;
   }
   if (ext == ".off" || ext == ".ply" || ext == ".obj") {
-    const Status s = ext == ".off"   ? ReadOff(path, out)
+    const Status s = ext == ".off"   ? ReadOff(path, out, notes)
                      : ext == ".ply" ? ReadPlyMesh(path, out, notes)
                                      : ReadObjMesh(path, out, notes);
     if (!s.ok()) return s;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // OBJ meshes with their attributes (mesh_formats.h).
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -65,7 +66,13 @@ Status ReadObjMesh(const std::string& path, PolygonSoup* out,
         return at("a vertex needs x y z (then w, or r g b)");
       }
       for (int k = 0; k < n; ++k) {
-        if (!std::isfinite(x[k])) return at("a coordinate is not finite");
+        if (!std::isfinite(x[k])) {
+          return at(k < 3 ? "a coordinate is not finite"
+                          : "a colour value is not finite");
+        }
+        if (k >= 3 && !std::isfinite(static_cast<float>(x[k]))) {
+          return at("a colour value is beyond single precision");
+        }
       }
       out->vertices.push_back({x[0], x[1], x[2]});
       if (n >= 6) {
@@ -79,6 +86,13 @@ Status ReadObjMesh(const std::string& path, PolygonSoup* out,
       double x[3];
       const int n = Numbers(&p, x, 3);
       if (n < 1 || !Blank(p)) return at("a texture coordinate needs u [v [w]]");
+      for (int k = 0; k < std::min(n, 2); ++k) {
+        if (!std::isfinite(static_cast<float>(x[k]))) {
+          return at(
+              "a texture coordinate is not finite in single precision "
+              "(attributes are floats)");
+        }
+      }
       uvs.push_back(static_cast<float>(x[0]));
       uvs.push_back(static_cast<float>(n > 1 ? x[1] : 0.0));
     } else if (p[0] == 'v' && p[1] == 'n' && (p[2] == ' ' || p[2] == '\t')) {
@@ -86,6 +100,13 @@ Status ReadObjMesh(const std::string& path, PolygonSoup* out,
       double x[3];
       if (Numbers(&p, x, 3) != 3 || !Blank(p))
         return at("a normal needs x y z");
+      for (double c : x) {
+        if (!std::isfinite(static_cast<float>(c))) {
+          return at(
+              "a normal is not finite in single precision (attributes "
+              "are floats)");
+        }
+      }
       for (double c : x) normals.push_back(static_cast<float>(c));
     } else if (p[0] == 'f' && (p[1] == ' ' || p[1] == '\t')) {
       p += 2;
@@ -141,6 +162,16 @@ Status ReadObjMesh(const std::string& path, PolygonSoup* out,
   }
   if (in.bad()) return InvalidArgument("cannot read mesh file '" + path + "'");
   if (colored > 0) {
+    // Some exporters write colours as 0..255: scaled when any exceeds 1.
+    const float top = *std::max_element(colors.begin(), colors.end());
+    if (top > 1 && top <= 255) {
+      for (float& c : colors) c /= 255;
+      if (notes != nullptr) {
+        notes->push_back("'" + path +
+                         "': vertex colours read as 0..255 (one "
+                         "exceeds 1) and scaled to [0, 1]");
+      }
+    }
     if (colored == out->vertices.size()) {
       out->attributes.push_back({"color", 3, std::move(colors), {}});
     } else if (notes != nullptr) {
@@ -179,6 +210,7 @@ Status ReadObjMesh(const std::string& path, PolygonSoup* out,
 void WriteObjSoup(std::ostream& out, const PolygonSoup& soup,
                   std::vector<std::string>* notes) {
   const AttributeChannel* color = Find(soup, "color");
+  const AttributeChannel* const color_channel = color;
   const AttributeChannel* uv = Find(soup, "uv");
   const AttributeChannel* normal = Find(soup, "normal");
   if (color != nullptr && (color->per_corner() || color->dims < 3)) {
@@ -196,7 +228,7 @@ void WriteObjSoup(std::ostream& out, const PolygonSoup& soup,
   if (uv != nullptr && uv->dims != 2) uv = nullptr;
   if (normal != nullptr && normal->dims != 3) normal = nullptr;
   for (const AttributeChannel& ch : soup.attributes) {
-    if (&ch != color && &ch != uv && &ch != normal) {
+    if (&ch != color_channel && &ch != uv && &ch != normal) {
       notes->push_back("attribute '" + ch.name +
                        "' not written: OBJ has no "
                        "place for it (PLY keeps it)");

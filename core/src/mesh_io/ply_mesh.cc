@@ -2,6 +2,7 @@
 // PLY meshes with their attributes (mesh_formats.h). The header has been
 // checked by CheckPlyHeader (mesh_files.cc) before this reader runs.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -9,7 +10,6 @@
 #include <map>
 #include <ostream>
 #include <sstream>
-#include <unordered_map>
 
 #include "mesh_io/mesh_formats.h"
 
@@ -419,9 +419,9 @@ Status ReadPlyMesh(const std::string& path, PolygonSoup* out,
 void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
                   std::vector<std::string>* notes) {
   // Vertices as written: one per distinct (vertex, per-corner entries).
-  std::vector<int32_t> source;            // written vertex -> soup vertex
-  std::vector<std::vector<int32_t>> key;  // its per-corner entries
-  std::vector<int32_t> corner_vertex;     // per corner, the written vertex
+  std::vector<int32_t> source;         // written vertex -> soup vertex
+  std::vector<int32_t> corner_vertex;  // per corner, the written vertex
+  std::vector<int32_t> keys;  // its per-corner entries (seamed.size() each)
   std::vector<const AttributeChannel*> seamed;
   for (const AttributeChannel& ch : soup.attributes) {
     if (ch.per_corner()) seamed.push_back(&ch);
@@ -432,41 +432,57 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
       source[v] = static_cast<int32_t>(v);
     corner_vertex = soup.faces.indices();
   } else {
-    // Entries of equal value are one (an OBJ names a vt per corner).
-    std::vector<std::vector<int32_t>> canonical(seamed.size());
-    for (size_t s = 0; s < seamed.size(); ++s) {
+    // Entries of equal value are one (an OBJ names a vt per corner): the
+    // entries sorted by their bytes, each run named by its first.
+    const size_t n_seamed = seamed.size();
+    std::vector<std::vector<int32_t>> canonical(n_seamed);
+    for (size_t s = 0; s < n_seamed; ++s) {
       const AttributeChannel& ch = *seamed[s];
-      std::unordered_map<std::string, int32_t> first;
-      canonical[s].resize(ch.entries());
-      for (size_t e = 0; e < ch.entries(); ++e) {
-        const std::string bytes(reinterpret_cast<const char*>(ch.entry(e)),
-                                sizeof(float) * ch.dims);
-        canonical[s][e] =
-            first.try_emplace(bytes, static_cast<int32_t>(e)).first->second;
+      const size_t width = sizeof(float) * ch.dims;
+      std::vector<int32_t> order(ch.entries());
+      for (size_t e = 0; e < order.size(); ++e) order[e] = int32_t(e);
+      auto cmp = [&](int32_t x, int32_t y) {
+        return std::memcmp(ch.entry(x), ch.entry(y), width);
+      };
+      std::sort(order.begin(), order.end(), [&](int32_t x, int32_t y) {
+        const int c = cmp(x, y);
+        return c < 0 || (c == 0 && x < y);
+      });
+      canonical[s].resize(order.size());
+      for (size_t i = 0; i < order.size(); ++i) {
+        canonical[s][order[i]] = i > 0 && cmp(order[i - 1], order[i]) == 0
+                                     ? canonical[s][order[i - 1]]
+                                     : order[i];
       }
     }
-    std::map<std::pair<int32_t, std::vector<int32_t>>, int32_t> written;
+    // Written vertices of one soup vertex are chained (a vertex has a few
+    // corners): key w's entries are keys[w * n_seamed + s].
+    std::vector<int32_t> first_written(soup.vertices.size(), -1), next;
     const std::vector<int32_t>& corners = soup.faces.indices();
+    std::vector<int32_t> k(n_seamed);
     for (size_t c = 0; c < corners.size(); ++c) {
-      std::vector<int32_t> k;
-      for (size_t s = 0; s < seamed.size(); ++s) {
-        k.push_back(canonical[s][seamed[s]->indices[c]]);
+      for (size_t s = 0; s < n_seamed; ++s) {
+        k[s] = canonical[s][seamed[s]->indices[c]];
       }
-      auto [it, fresh] = written.try_emplace(
-          {corners[c], k}, static_cast<int32_t>(source.size()));
-      if (fresh) {
+      int32_t w = first_written[corners[c]];
+      while (w >= 0 &&
+             !std::equal(k.begin(), k.end(), keys.begin() + w * n_seamed)) {
+        w = next[w];
+      }
+      if (w < 0) {
+        w = static_cast<int32_t>(source.size());
         source.push_back(corners[c]);
-        key.push_back(std::move(k));
+        keys.insert(keys.end(), k.begin(), k.end());
+        next.push_back(first_written[corners[c]]);
+        first_written[corners[c]] = w;
       }
-      corner_vertex.push_back(it->second);
+      corner_vertex.push_back(w);
     }
     // Vertices on no face are written too (with each channel's first entry).
-    std::vector<bool> used(soup.vertices.size(), false);
-    for (int32_t v : corners) used[v] = true;
-    for (size_t v = 0; v < used.size(); ++v) {
-      if (used[v]) continue;
+    for (size_t v = 0; v < soup.vertices.size(); ++v) {
+      if (first_written[v] >= 0) continue;
       source.push_back(static_cast<int32_t>(v));
-      key.emplace_back(seamed.size(), 0);
+      keys.insert(keys.end(), n_seamed, 0);
     }
     if (source.size() > soup.vertices.size()) {
       notes->push_back(
@@ -498,10 +514,25 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
           << '\n';
     }
   }
-  size_t faces = 0;  // faces of more than 255 corners are written as fans
-  for (FaceView f : soup.faces) faces += f.size() > 255 ? f.size() - 2 : 1;
-  out << "element face " << faces
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  // Corner counts in a byte, as most tools write them, or in 16 bits when a
+  // face needs it; a face of more corners than that is written as a fan.
+  size_t largest = 0;
+  for (FaceView f : soup.faces) largest = std::max(largest, f.size());
+  const bool wide = largest > 255;
+  constexpr size_t kMaxCorners = 65535;
+  size_t faces = 0, fanned = 0;
+  for (FaceView f : soup.faces) {
+    faces += f.size() > kMaxCorners ? f.size() - 2 : 1;
+    fanned += f.size() > kMaxCorners;
+  }
+  if (fanned > 0) {
+    notes->push_back(std::to_string(fanned) + " faces of more than " +
+                     std::to_string(kMaxCorners) +
+                     " corners written as fans of triangles: PLY counts "
+                     "corners in 16 bits at most");
+  }
+  out << "element face " << faces << "\nproperty list "
+      << (wide ? "ushort" : "uchar") << " int vertex_indices\nend_header\n";
   auto put = [&](auto value) {
     if (ascii) {
       if constexpr (sizeof(value) == 1) {
@@ -519,17 +550,22 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
   auto space = [&] {
     if (ascii) out << ' ';
   };
+  size_t rounded = 0;  // colours that bytes do not hold exactly
   for (size_t w = 0; w < source.size(); ++w) {
     const Vec3& p = soup.vertices[source[w]];
     put(p.x), space(), put(p.y), space(), put(p.z);
     size_t s = 0;
     for (const AttributeChannel& ch : soup.attributes) {
-      const int32_t e = ch.per_corner() ? key[w][s++] : source[w];
+      const int32_t e =
+          ch.per_corner() ? keys[w * seamed.size() + s++] : source[w];
       for (int d = 0; d < ch.dims; ++d) {
         space();
         const float x = ch.entry(e)[d];
         if (ch.name == "color" && (ch.dims == 3 || ch.dims == 4)) {
-          put(static_cast<uint8_t>(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f));
+          const auto byte =
+              static_cast<uint8_t>(std::clamp(x, 0.0f, 1.0f) * 255.0f + 0.5f);
+          rounded += std::abs(byte / 255.0f - x) > 1e-6f;
+          put(byte);
         } else {
           const auto precision = out.precision(9);
           put(x);
@@ -539,12 +575,23 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
     }
     if (ascii) out << '\n';
   }
+  if (rounded > 0) {
+    notes->push_back(std::to_string(rounded) +
+                     " colour values written to the nearest of PLY's 256 "
+                     "steps (clamped to [0, 1] where outside)");
+  }
+  auto put_count = [&](size_t n) {
+    if (wide) {
+      put(static_cast<uint16_t>(n));
+    } else {
+      put(static_cast<uint8_t>(n));
+    }
+  };
   size_t c = 0;
   for (FaceView f : soup.faces) {
-    // Faces of more than 255 corners do not fit the uchar count: fans.
-    if (f.size() > 255) {
+    if (f.size() > kMaxCorners) {
       for (size_t k = 1; k + 1 < f.size(); ++k) {
-        put(uint8_t{3});
+        put_count(3);
         for (size_t j : {size_t{0}, k, k + 1})
           space(), put(corner_vertex[c + j]);
         if (ascii) out << '\n';
@@ -552,7 +599,7 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
       c += f.size();
       continue;
     }
-    put(static_cast<uint8_t>(f.size()));
+    put_count(f.size());
     for (size_t k = 0; k < f.size(); ++k) space(), put(corner_vertex[c++]);
     if (ascii) out << '\n';
   }

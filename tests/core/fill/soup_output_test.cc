@@ -16,12 +16,12 @@ namespace dot {
 namespace {
 
 // n x n unit quads at z = bump(x, y) without the quads [lo, hi)^2.
-PolygonSoup QuadGridWithHole(int n, int lo, int hi) {
+PolygonSoup QuadGridWithHole(int n, int lo, int hi, double bump = 0.05) {
   PolygonSoup soup;
   for (int i = 0; i <= n; ++i) {
     for (int j = 0; j <= n; ++j) {
       const double x = i, y = j;
-      soup.vertices.push_back({x, y, 0.05 * std::sin(x) * std::cos(y)});
+      soup.vertices.push_back({x, y, bump * std::sin(x) * std::cos(y)});
     }
   }
   auto id = [n](int i, int j) { return i * (n + 1) + j; };
@@ -124,6 +124,27 @@ TEST(SoupOutputTest, VertexAttributesAreCarriedAndNewOnesBlendFromTheRim) {
       EXPECT_LE(h.entry(v)[0], 21.0f + 1e-4f);
       EXPECT_NEAR(h.entry(v)[0], p.x + 2 * p.y, 1.5) << "vertex " << v;
     }
+  }
+}
+
+// A planar UV map of a flat patch stays planar: mean-value weights
+// reproduce a linear field exactly (uniform weights were off by 0.04).
+TEST(SoupOutputTest, AFlatPatchKeepsALinearFieldExactly) {
+  PolygonSoup sent = QuadGridWithHole(10, 3, 7, /*bump=*/0);
+  AttributeChannel uv{"uv", 2, {}, {}};
+  for (const Vec3& p : sent.vertices) {
+    uv.values.insert(uv.values.end(), {float(p.x / 10), float(p.y / 10)});
+  }
+  sent.attributes = {uv};
+  FillOptions o = Keeping();
+  o.selection.skip_longest = true;
+  const SoupFillResult r = FillSoup(sent, o);
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  ASSERT_GT(r.fill.report.added_vertices, 0);
+  const AttributeChannel& out = r.soup.attributes.at(0);
+  for (size_t v = sent.vertices.size(); v < r.soup.vertices.size(); ++v) {
+    EXPECT_NEAR(out.entry(v)[0], r.soup.vertices[v].x / 10, 1e-5) << v;
+    EXPECT_NEAR(out.entry(v)[1], r.soup.vertices[v].y / 10, 1e-5) << v;
   }
 }
 

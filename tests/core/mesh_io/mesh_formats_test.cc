@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -101,8 +102,12 @@ TEST(MeshFormatsTest, EveryChannelRoundTripsThroughObjAndPly) {
     if (ext == "ply") {
       // PLY holds one value per vertex: the seam vertex is written twice.
       EXPECT_EQ(back.vertices.size(), 6u);
-      ASSERT_EQ(notes.size(), 1u);
+      // ... and colours are bytes: 0.5 (vertex 3, three channels) rounds.
+      ASSERT_EQ(notes.size(), 2u);
       EXPECT_NE(notes[0].find("1 vertices written twice"), std::string::npos);
+      EXPECT_NE(notes[1].find("3 colour values written to the nearest"),
+                std::string::npos)
+          << notes[1];
     } else {
       EXPECT_EQ(back.vertices.size(), 5u);
       EXPECT_TRUE(notes.empty());
@@ -138,6 +143,41 @@ TEST(MeshFormatsTest, PlyPropertiesBecomeChannels) {
   ASSERT_EQ(notes.size(), 1u);  // the per-face colour
   EXPECT_NE(notes[0].find("face property 'red'"), std::string::npos);
   std::remove(path.c_str());
+}
+
+TEST(MeshFormatsTest, OffColoursObjByteColoursAndLargeFacesAreKept) {
+  // COFF: colours per vertex, as bytes.
+  const std::string off =
+      Write("k.off",
+            "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n"
+            "0 1 0 0 0 255 255\n3 0 1 2\n");
+  PolygonSoup s;
+  ASSERT_TRUE(ReadPolygonSoupFile(off, &s).ok());
+  ASSERT_NE(Channel(s, "color"), nullptr);
+  EXPECT_EQ(At(s, "color", 2), (std::vector<float>{0, 0, 1}));
+  // OBJ colours on a 0..255 scale are scaled, with a note.
+  const std::string obj = Write(
+      "l.obj", "v 0 0 0 255 0 0\nv 1 0 0 0 51 0\nv 0 1 0 0 0 0\nf 1 2 3\n");
+  std::vector<std::string> notes;
+  ASSERT_TRUE(ReadPolygonSoupFile(obj, &s, &notes).ok());
+  EXPECT_EQ(At(s, "color", 1), (std::vector<float>{0, 0.2f, 0}));
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("0..255"), std::string::npos);
+  // A face of 300 corners stays one face in PLY (16-bit counts).
+  PolygonSoup big;
+  std::vector<int32_t> ring;
+  for (int k = 0; k < 300; ++k) {
+    big.vertices.push_back({std::cos(k * 0.02), std::sin(k * 0.02), 0});
+    ring.push_back(k);
+  }
+  big.faces.push_back(ring);
+  const std::string ply = TempPath("big.ply");
+  ASSERT_TRUE(WriteSoupFile(ply, big).ok());
+  PolygonSoup back;
+  ASSERT_TRUE(ReadPolygonSoupFile(ply, &back).ok());
+  ASSERT_EQ(back.faces.size(), 1u);
+  EXPECT_EQ(back.faces[0].size(), 300u);
+  for (const std::string& path : {off, obj, ply}) std::remove(path.c_str());
 }
 
 TEST(MeshFormatsTest, BadFilesAreNamedByLineOrItem) {
