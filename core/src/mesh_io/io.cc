@@ -11,13 +11,12 @@
 
 #include "dot/control.h"
 #include "mesh/normals.h"
+#include "mesh_io/byte_order.h"
 #include "mesh_io/mesh_formats.h"
 #include "mesh_io/polygon_triangles.h"
 
 namespace dot {
 namespace {
-
-constexpr bool kLittleEndianHost = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 
 std::string Extension(const std::string& path) {
   const auto dot = path.find_last_of('.');
@@ -259,14 +258,6 @@ Status WritePolygonText(const std::string& path, const PolygonData& polygon) {
 }
 
 namespace {
-
-template <typename T>
-void PutLittleEndian(std::ostream& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  if (!kLittleEndianHost) std::reverse(bytes, bytes + sizeof(T));
-  out.write(bytes, sizeof(T));
-}
 
 // Binary little-endian PLY: doubles as they are, so nothing is rounded.
 void WriteBinaryPly(std::ostream& out, const MeshData& mesh) {

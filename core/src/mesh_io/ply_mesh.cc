@@ -11,12 +11,11 @@
 #include <ostream>
 #include <sstream>
 
+#include "mesh_io/byte_order.h"
 #include "mesh_io/mesh_formats.h"
 
 namespace dot {
 namespace {
-
-constexpr bool kLittleEndianHost = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 
 enum class Type {
   kInt8,
@@ -541,10 +540,7 @@ void WritePlySoup(std::ostream& out, const PolygonSoup& soup, bool ascii,
         out << value;
       }
     } else {
-      char b[sizeof(value)];
-      std::memcpy(b, &value, sizeof(value));
-      if (!kLittleEndianHost) std::reverse(b, b + sizeof(value));
-      out.write(b, sizeof(value));
+      PutLittleEndian(out, value);
     }
   };
   auto space = [&] {
