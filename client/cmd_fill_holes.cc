@@ -14,6 +14,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/inputs.h"
 #include "commands.h"
 #include "exit_codes.h"
 #include "fill_call.h"
@@ -26,7 +27,8 @@ namespace dot::client {
 namespace {
 
 struct FillFlags {
-  std::string input, output, stdin_format, output_format;
+  std::vector<std::string> inputs;  // as given: files, directories, -
+  std::string input, output, stdin_format, output_format;  // input: one
   std::string stage = "fair";
   uint32_t max_hole_edges = 0;
   double max_hole_diameter = 0;
@@ -65,9 +67,10 @@ struct FillFlags {
 };
 
 void AddFlags(CLI::App* cmd, FillFlags* f) {
-  cmd->add_option("mesh", f->input,
-                  "mesh file (.off, .obj, .ply, .stl), or - for stdin "
-                  "(with --input-format)")
+  cmd->add_option("mesh", f->inputs,
+                  "mesh files (.off, .obj, .ply, .stl) or directories of "
+                  "them, or - for stdin (with --input-format); several "
+                  "need -o DIR/ or none (each beside its input)")
       ->required();
   cmd->add_option("-o,--output", f->output,
                   "filled mesh (.off, .obj, .ply, .stl; - for stdout as "
@@ -290,6 +293,150 @@ std::string ProgressLine(const v1::FillProgress& p) {
   return line;
 }
 
+// One mesh: read, fill (here or on the server, over `channel`, made on
+// first use), write, report.
+void FillOne(const FillFlags& f, Context* ctx,
+             std::shared_ptr<grpc::Channel>* channel) {
+  FillOutcome o;
+  std::string written;
+  // Every outcome, as text on stderr or as one JSON object.
+  auto report = [&](const char* outcome, int exit_code,
+                    const std::string& error, bool called) {
+    ctx->exit_code = std::max(ctx->exit_code, exit_code);
+    if (f.json) {
+      std::ostream& text = written == "-" ? std::cerr : std::cout;
+      text << FillOutcomeJson(f.input, o, written, outcome, exit_code, error,
+                              called)
+           << std::endl;
+    } else if (!error.empty()) {
+      std::cerr << "dotctl: " << f.input << ": " << error << "\n";
+    }
+  };
+  if (f.input == "/dev/stdin" && f.stdin_format.empty()) {
+    report(kOutcomeInputError, kExitUsage,
+           "reading a mesh from stdin needs --input-format", false);
+    return;
+  }
+  // Checked before the work: where the mesh goes, and that it can.
+  const OutputTarget target = ResolveOutput(
+      f.input, f.output, f.output_format, /*into_directory=*/false,
+      {"filled", "ply", "off", "--output-format"});
+  AtomicOutput sink;
+  std::string output_error = f.dry_run ? "" : target.error;
+  if (f.dry_run && !f.output.empty()) {
+    output_error = "--dry-run writes no mesh: leave out -o " + f.output;
+  }
+  if (output_error.empty() && !f.dry_run) {
+    output_error = sink.Open(target.Name());
+  }
+  if (!output_error.empty()) {
+    report(kOutcomeOutputError, kExitUsage, output_error, false);
+    return;
+  }
+  // On a terminal, the phase and the holes done, on one line of stderr.
+  const bool bar = isatty(STDERR_FILENO) && !ctx->quiet;
+  auto phase = [bar](const std::string& text) {
+    if (bar) std::cerr << "\r" << text << "\033[K" << std::flush;
+  };
+  // -v: where the time went, phase by phase (the fill's phases as its
+  // progress reports them).
+  PhaseClock clock;
+  const auto on_progress = [&phase, &clock](const v1::FillProgress& p) {
+    phase(ProgressLine(p));
+    clock.Start(std::string(FillPhaseName(wire::FillPhaseFromWire(p.phase()))));
+  };
+  phase("  reading " + f.input);
+  clock.Start("read");
+  PolygonSoup soup;
+  std::vector<std::string> read_notes;
+  const Status read = ReadInput(f, &soup, &read_notes);
+  phase("");
+  if (!read.ok()) {
+    report(kOutcomeInputError, kExitUsage, read.message, false);
+    return;
+  }
+  if (f.local) {
+    o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress,
+                  /*keep_polygons=*/!f.triangles);
+  } else {
+    if (!*channel) *channel = ChannelOrReport(ctx);
+    if (!*channel) return;
+    auto stub = v1::Triangulator::NewStub(*channel);
+    phase("  uploading " + std::to_string(soup.faces.size()) + " faces");
+    clock.Start("upload");
+    o = FillRemote(*stub, f.input, f.ToWire(), soup, ctx->connection.timeout_s,
+                   on_progress);
+  }
+  phase("");
+  o.notes.insert(o.notes.begin(), read_notes.begin(), read_notes.end());
+  if (!o.status.ok() && !o.partial) {
+    // A mesh or options the service refuses are unusable input (2).
+    const int code = o.status.error_code() == grpc::StatusCode::INVALID_ARGUMENT
+                         ? kExitUsage
+                         : ExitCodeFor(o.status);
+    report(kOutcomeCallFailed, code,
+           std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
+               o.status.error_message(),
+           true);
+    return;
+  }
+  if (f.dry_run) {
+    if (f.json) {
+      report(kOutcomeOk, kExitOk, "", true);
+    } else if (!ctx->quiet) {
+      PrintListing(f.input, o.report);
+    }
+    return;
+  }
+  phase("  writing " + target.Name());
+  clock.Start("write");
+  Status w =
+      o.as_sent
+          ? WriteSoup(sink.stream(), target.format, o.soup, f.ascii, &o.notes)
+          : WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
+  phase("");
+  clock.Start("");
+  if (ctx->verbose) std::cerr << "phases: " << clock.Summary() << "\n";
+  std::string write_error = w.ok() ? sink.Commit() : w.message;
+  if (!write_error.empty()) {
+    report(kOutcomeWriteFailed, kExitFailed, write_error, true);
+    return;
+  }
+  written = target.Name();
+  const v1::FillReport& r = o.report;
+  const std::string stopped =
+      o.partial ? std::string(wire::GrpcCodeName(o.status.error_code())) +
+                      ": " + o.status.error_message()
+                : "";
+  const int code = o.partial          ? kExitPartial
+                   : r.unfilled() > 0 ? kExitNoTriangulation
+                                      : kExitOk;
+  if (f.json) {
+    report(o.partial          ? kOutcomePartial
+           : r.unfilled() > 0 ? kOutcomeNoTriangulation
+                              : kOutcomeOk,
+           code, stopped, true);
+    return;
+  }
+  ctx->exit_code = std::max(ctx->exit_code, code);
+  if (ctx->quiet) return;  // -q: errors only
+  // With the mesh on stdout, the report goes to stderr.
+  std::ostream& text = written == "-" ? std::cerr : std::cout;
+  if (written != "-") PrintTable(r);
+  text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
+       << " holes filled"
+       << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)" : "")
+       << ", " << (r.closed() ? "closed" : "still open") << "; +"
+       << r.added_vertices() << " vertices, +" << r.added_faces() << " faces, "
+       << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> " << written
+       << std::endl;
+  if (o.partial) {
+    text << "  stopped early: " << stopped << "\n";
+  }
+  for (const std::string& note : FillNotes(r)) text << "  " << note << "\n";
+  for (const std::string& note : o.notes) text << "  note: " << note << "\n";
+}
+
 }  // namespace
 
 void AddFillHolesCommand(CLI::App& app, Context* ctx) {
@@ -300,148 +447,50 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       "Example: dotctl fill-holes scan.ply -o closed.ply --max-hole-edges 500");
   AddFlags(cmd, flags.get());
   cmd->callback([flags, ctx] {
-    const FillFlags& f = *flags;
-    FillOutcome o;
-    std::string written;
-    // Every outcome, as text on stderr or as one JSON object.
-    auto report = [&](const char* outcome, int exit_code,
-                      const std::string& error, bool called) {
-      ctx->exit_code = std::max(ctx->exit_code, exit_code);
-      if (f.json) {
-        std::ostream& text = written == "-" ? std::cerr : std::cout;
-        text << FillOutcomeJson(f.input, o, written, outcome, exit_code, error,
-                                called)
-             << std::endl;
-      } else if (!error.empty()) {
-        std::cerr << "dotctl: " << f.input << ": " << error << "\n";
+    std::string error;
+    const std::vector<std::string> inputs =
+        ExpandInputs(flags->inputs, &error, {".off", ".obj", ".ply", ".stl"});
+    const std::string& out = flags->output;
+    std::string why;
+    if (!error.empty()) {
+      why = error;
+    } else if (inputs.size() > 1 && out == "-") {
+      why = "several meshes cannot all go to stdout: use -o DIR/";
+    } else if (inputs.size() > 1 && !out.empty() && out.back() != '/' &&
+               !std::filesystem::is_directory(out)) {
+      why = "several meshes need a directory for -o (end it with '/')";
+    } else if (inputs.size() > 1 && flags->dry_run && !out.empty()) {
+      why = "--dry-run writes no mesh: leave out -o " + out;
+    }
+    if (why.empty() && inputs.size() > 1 && !out.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(out, ec);
+      if (ec) why = "cannot create directory '" + out + "': " + ec.message();
+    }
+    if (!why.empty()) {
+      if (flags->json) {
+        std::string named;
+        for (const std::string& i : flags->inputs) {
+          named += (named.empty() ? "" : " ") + i;
+        }
+        std::cout << FillOutcomeJson(named, {}, "",
+                                     error.empty() ? kOutcomeOutputError
+                                                   : kOutcomeInputError,
+                                     kExitUsage, why, false)
+                  << std::endl;
+      } else {
+        std::cerr << "dotctl: fill-holes: " << why << "\n";
       }
-    };
-    if (f.input == "/dev/stdin" && f.stdin_format.empty()) {
-      report(kOutcomeInputError, kExitUsage,
-             "reading a mesh from stdin needs --input-format", false);
+      ctx->exit_code = std::max(ctx->exit_code, static_cast<int>(kExitUsage));
       return;
     }
-    // Checked before the work: where the mesh goes, and that it can.
-    const OutputTarget target = ResolveOutput(
-        f.input, f.output, f.output_format, /*into_directory=*/false,
-        {"filled", "ply", "off", "--output-format"});
-    AtomicOutput sink;
-    std::string output_error = f.dry_run ? "" : target.error;
-    if (f.dry_run && !f.output.empty()) {
-      output_error = "--dry-run writes no mesh: leave out -o " + f.output;
+    // One connection for every mesh sent to a server.
+    std::shared_ptr<grpc::Channel> channel;
+    for (const std::string& input : inputs) {
+      FillFlags one = *flags;
+      one.input = input;
+      FillOne(one, ctx, &channel);
     }
-    if (output_error.empty() && !f.dry_run) {
-      output_error = sink.Open(target.Name());
-    }
-    if (!output_error.empty()) {
-      report(kOutcomeOutputError, kExitUsage, output_error, false);
-      return;
-    }
-    // On a terminal, the phase and the holes done, on one line of stderr.
-    const bool bar = isatty(STDERR_FILENO) && !ctx->quiet;
-    auto phase = [bar](const std::string& text) {
-      if (bar) std::cerr << "\r" << text << "\033[K" << std::flush;
-    };
-    // -v: where the time went, phase by phase (the fill's phases as its
-    // progress reports them).
-    PhaseClock clock;
-    const auto on_progress = [&phase, &clock](const v1::FillProgress& p) {
-      phase(ProgressLine(p));
-      clock.Start(
-          std::string(FillPhaseName(wire::FillPhaseFromWire(p.phase()))));
-    };
-    phase("  reading " + f.input);
-    clock.Start("read");
-    PolygonSoup soup;
-    std::vector<std::string> read_notes;
-    const Status read = ReadInput(f, &soup, &read_notes);
-    phase("");
-    if (!read.ok()) {
-      report(kOutcomeInputError, kExitUsage, read.message, false);
-      return;
-    }
-    if (f.local) {
-      o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress,
-                    /*keep_polygons=*/!f.triangles);
-    } else {
-      auto channel = ChannelOrReport(ctx);
-      if (!channel) return;
-      auto stub = v1::Triangulator::NewStub(channel);
-      phase("  uploading " + std::to_string(soup.faces.size()) + " faces");
-      clock.Start("upload");
-      o = FillRemote(*stub, f.input, f.ToWire(), soup,
-                     ctx->connection.timeout_s, on_progress);
-    }
-    phase("");
-    o.notes.insert(o.notes.begin(), read_notes.begin(), read_notes.end());
-    if (!o.status.ok() && !o.partial) {
-      // A mesh or options the service refuses are unusable input (2).
-      const int code =
-          o.status.error_code() == grpc::StatusCode::INVALID_ARGUMENT
-              ? kExitUsage
-              : ExitCodeFor(o.status);
-      report(kOutcomeCallFailed, code,
-             std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
-                 o.status.error_message(),
-             true);
-      return;
-    }
-    if (f.dry_run) {
-      if (f.json) {
-        report(kOutcomeOk, kExitOk, "", true);
-      } else if (!ctx->quiet) {
-        PrintListing(f.input, o.report);
-      }
-      return;
-    }
-    phase("  writing " + target.Name());
-    clock.Start("write");
-    Status w =
-        o.as_sent
-            ? WriteSoup(sink.stream(), target.format, o.soup, f.ascii, &o.notes)
-            : WriteMesh(sink.stream(), target.format, o.mesh, f.ascii);
-    phase("");
-    clock.Start("");
-    if (ctx->verbose) std::cerr << "phases: " << clock.Summary() << "\n";
-    std::string write_error = w.ok() ? sink.Commit() : w.message;
-    if (!write_error.empty()) {
-      report(kOutcomeWriteFailed, kExitFailed, write_error, true);
-      return;
-    }
-    written = target.Name();
-    const v1::FillReport& r = o.report;
-    const std::string stopped =
-        o.partial ? std::string(wire::GrpcCodeName(o.status.error_code())) +
-                        ": " + o.status.error_message()
-                  : "";
-    const int code = o.partial          ? kExitPartial
-                     : r.unfilled() > 0 ? kExitNoTriangulation
-                                        : kExitOk;
-    if (f.json) {
-      report(o.partial          ? kOutcomePartial
-             : r.unfilled() > 0 ? kOutcomeNoTriangulation
-                                : kOutcomeOk,
-             code, stopped, true);
-      return;
-    }
-    ctx->exit_code = std::max(ctx->exit_code, code);
-    if (ctx->quiet) return;  // -q: errors only
-    // With the mesh on stdout, the report goes to stderr.
-    std::ostream& text = written == "-" ? std::cerr : std::cout;
-    if (written != "-") PrintTable(r);
-    text << f.input << ": " << r.filled() << " of " << r.loops() - r.skipped()
-         << " holes filled"
-         << (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
-                         : "")
-         << ", " << (r.closed() ? "closed" : "still open") << "; +"
-         << r.added_vertices() << " vertices, +" << r.added_faces()
-         << " faces, " << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> "
-         << written << std::endl;
-    if (o.partial) {
-      text << "  stopped early: " << stopped << "\n";
-    }
-    for (const std::string& note : FillNotes(r)) text << "  " << note << "\n";
-    for (const std::string& note : o.notes) text << "  note: " << note << "\n";
   });
 }
 

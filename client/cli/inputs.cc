@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -14,17 +15,21 @@ namespace dot::client {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
-                                      std::string* error) {
+std::vector<std::string> ExpandInputs(
+    const std::vector<std::string>& args, std::string* error,
+    const std::vector<std::string>& extensions) {
   std::vector<std::string> files;
   for (const std::string& a : args) {
     std::error_code ec;
     if (a != "-" && fs::is_directory(a, ec)) {
       std::vector<std::string> found;
       for (const auto& e : fs::directory_iterator(a, ec)) {
-        const std::string ext = e.path().extension().string();
+        std::string ext = e.path().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return std::tolower(c); });
         if (e.is_regular_file() &&
-            (ext == ".xyz" || ext == ".txt" || ext == ".obj")) {
+            std::find(extensions.begin(), extensions.end(), ext) !=
+                extensions.end()) {
           found.push_back(e.path().string());
         }
       }
@@ -34,7 +39,11 @@ std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
       files.push_back(a);  // "-", a file, or a name the reader will refuse
     }
   }
-  if (files.empty() && error->empty()) *error = "no polygon files found";
+  if (files.empty() && error->empty()) {
+    *error = "no files found (looked for";
+    for (const std::string& ext : extensions) *error += " *" + ext;
+    *error += ")";
+  }
   return files;
 }
 

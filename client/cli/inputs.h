@@ -10,11 +10,13 @@
 
 namespace dot::client {
 
-// Polygon files named, or found (*.xyz, *.txt, *.obj) in a directory; "-"
+// Files named, or found in a directory (those ending in one of
+// `extensions`, sorted; by default polygon files: .xyz, .txt, .obj); "-"
 // (stdin) and names that do not exist are passed through for the reader to
-// report. Error: no polygon files at all.
-std::vector<std::string> ExpandInputs(const std::vector<std::string>& args,
-                                      std::string* error);
+// report. Error: no files at all.
+std::vector<std::string> ExpandInputs(
+    const std::vector<std::string>& args, std::string* error,
+    const std::vector<std::string>& extensions = {".xyz", ".txt", ".obj"});
 // "-", or a path that names a stream rather than a file (/dev/stdin,
 // /dev/fd/N, /proc/self/fd/N, a pipe, a device): nothing can be written
 // beside it.
