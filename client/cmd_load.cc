@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "fill_call.h"
 #include "remote_call.h"
 #include "wire/wire.h"
 
@@ -30,6 +31,7 @@ struct LoadFlags {
   std::string curve = "monkey";
   int n = 100;
   std::vector<std::string> files;
+  std::vector<std::string> meshes;  // FillHoles calls with these meshes
   RequestFlags request;
   bool json = false, local = false, batch = false;
   bool same_polygon = false;
@@ -61,6 +63,11 @@ void AddLoadFlags(CLI::App* cmd, LoadFlags* f) {
       ->check(CLI::Range(3, 10000000))
       ->capture_default_str();
   cmd->add_option("--files", f->files, "use these polygon files instead");
+  cmd->add_option("--meshes", f->meshes,
+                  "load-test FillHoles instead: each request fills one of "
+                  "these meshes (files or directories of .off, .obj, .ply, "
+                  ".stl), in turn, with the default options")
+      ->excludes("--files");
   cmd->add_flag("--same-polygon", f->same_polygon,
                 "send the polygons as they are, every time: after the first "
                 "call the server's search-space cache serves them (see "
@@ -78,14 +85,23 @@ void AddLoadFlags(CLI::App* cmd, LoadFlags* f) {
                 "keeping --concurrency requests in flight, instead of one "
                 "call per polygon")
       ->excludes("--local")
-      ->excludes("--rate");
+      ->excludes("--rate")
+      ->excludes("--meshes");
   AddRequestFlags(cmd, &f->request);
 }
 
 // The polygons to send: the files given, or one built-in curve.
 bool LoadPolygons(const LoadFlags& f, std::vector<PolygonData>* polygons,
-                  std::string* error) {
-  if (!f.files.empty()) {
+                  std::vector<PolygonSoup>* meshes, std::string* error) {
+  if (!f.meshes.empty()) {
+    for (const std::string& file :
+         ExpandInputs(f.meshes, error, {".off", ".obj", ".ply", ".stl"})) {
+      PolygonSoup soup;
+      const Status s = ReadPolygonSoupFile(file, &soup);
+      if (!s.ok()) *error = s.message;
+      meshes->push_back(std::move(soup));
+    }
+  } else if (!f.files.empty()) {
     for (const std::string& file : ExpandInputs(f.files, error)) {
       PolygonData p;
       const Status s = ReadPolygonInput(file, "", &p, nullptr);
@@ -188,18 +204,40 @@ int Tally::Print(double seconds, const LoadFlags& flags, bool quiet) const {
   const double throughput = latencies_.size() / seconds;
   const double p50 = Percentile(latencies_, 50),
                p90 = Percentile(latencies_, 90),
+               p95 = Percentile(latencies_, 95),
                p99 = Percentile(latencies_, 99),
-               max = Percentile(latencies_, 100);
+               max = Percentile(latencies_, 100),
+               min = Percentile(latencies_, 0);
+  double mean = 0;
+  for (double ms : latencies_) mean += ms / latencies_.size();
+  // A histogram as ghz prints one: ten buckets from min to max, each
+  // named by its upper mark.
+  constexpr int kBuckets = 10;
+  std::vector<int> counts(latencies_.empty() ? 0 : kBuckets, 0);
+  const double width = (max - min) / kBuckets;
+  for (double ms : latencies_) {
+    const int b = width > 0 ? static_cast<int>((ms - min) / width) : 0;
+    ++counts[std::min(b, kBuckets - 1)];
+  }
+  auto mark = [&](int b) { return min + width * (b + 1); };
   const char* polygons = flags.same_polygon ? "same" : "rotated";
   if (flags.json) {
     std::printf(
         "{\"requests\":%d,\"succeeded\":%zu,\"errors\":%d,\"seconds\":%.3f,"
-        "\"throughput_rps\":%.2f,\"latency_ms\":{\"p50\":%.3f,\"p90\":%.3f,"
-        "\"p99\":%.3f,\"max\":%.3f},\"polygons\":\"%s\",\"seed\":%llu,"
+        "\"throughput_rps\":%.2f,\"latency_ms\":{\"mean\":%.3f,\"min\":%.3f,"
+        "\"p50\":%.3f,\"p90\":%.3f,\"p95\":%.3f,\"p99\":%.3f,\"max\":%.3f},"
+        "\"histogram\":[",
+        total, latencies_.size(), errors, seconds, throughput, mean, min, p50,
+        p90, p95, p99, max);
+    for (size_t b = 0; b < counts.size(); ++b) {
+      std::printf("%s{\"mark_ms\":%.3f,\"count\":%d}", b ? "," : "",
+                  mark(static_cast<int>(b)), counts[b]);
+    }
+    std::printf(
+        "],\"call\":\"%s\",\"polygons\":\"%s\",\"seed\":%llu,"
         "\"cache_hits\":%d,\"by_status\":{",
-        total, latencies_.size(), errors, seconds, throughput, p50, p90, p99,
-        max, polygons, static_cast<unsigned long long>(flags.seed),
-        cache_hits_);
+        flags.meshes.empty() ? "Triangulate" : "FillHoles", polygons,
+        static_cast<unsigned long long>(flags.seed), cache_hits_);
     bool first = true;
     for (const auto& [label, count] : by_status_) {
       std::printf("%s\"%s\":%d", first ? "" : ",", label.c_str(), count);
@@ -209,9 +247,19 @@ int Tally::Print(double seconds, const LoadFlags& flags, bool quiet) const {
   } else if (!quiet) {
     std::printf("%d requests in %.2f s, concurrency %d: %.1f req/s\n", total,
                 seconds, flags.concurrency, throughput);
-    std::printf("latency ms: p50 %.2f  p90 %.2f  p99 %.2f  max %.2f\n", p50,
-                p90, p99, max);
-    if (flags.same_polygon) {
+    std::printf(
+        "latency ms: mean %.2f  min %.2f  p50 %.2f  p90 %.2f  p95 %.2f  "
+        "p99 %.2f  max %.2f\n",
+        mean, min, p50, p90, p95, p99, max);
+    const int most =
+        counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
+    for (size_t b = 0; b < counts.size(); ++b) {
+      std::printf("  %10.2f [%d]\t|%s\n", mark(static_cast<int>(b)), counts[b],
+                  std::string(most ? 40 * counts[b] / most : 0, '#').c_str());
+    }
+    if (!flags.meshes.empty()) {
+      std::printf("FillHoles: each request fills the next mesh given\n");
+    } else if (flags.same_polygon) {
       std::printf(
           "polygons: the same %s every request (--same-polygon); search "
           "space from the server's cache in %d of %zu answers%s\n",
@@ -246,6 +294,7 @@ struct LoadRun {
   const LoadFlags& flags;
   const Context& ctx;
   std::vector<PolygonData> polygons;
+  std::vector<PolygonSoup> meshes;                             // --meshes
   std::vector<v1::TriangulateRequest> requests;                // as they are
   std::vector<std::unique_ptr<v1::Triangulator::Stub>> stubs;  // remote only
   std::unique_ptr<DelaunayHelperPool> helpers;                 // local only
@@ -281,6 +330,21 @@ std::string OutcomeLabel(const CallOutcome& out) {
   return std::string(wire::GrpcCodeName(out.status.error_code()));
 }
 
+// One FillHoles call with mesh i (in turn): here or on the server.
+void FillWorkerCall(LoadRun& run, int w, int i) {
+  const PolygonSoup& mesh =
+      run.meshes[static_cast<size_t>(i) % run.meshes.size()];
+  const std::string id = "load-" + std::to_string(i);
+  const FillOutcome out = run.flags.local
+                              ? FillLocal(id, {}, mesh)
+                              : FillRemote(*run.stubs[w % run.stubs.size()], id,
+                                           {}, mesh, run.timeout_s);
+  const std::string label(wire::GrpcCodeName(out.status.error_code()));
+  PrintVerbose(run.ctx, "request " + std::to_string(i) + ": " + label + " in " +
+                            std::to_string(out.latency_ms) + " ms");
+  run.tally.Record(label, out.latency_ms, false, out.status.error_message());
+}
+
 // One call per polygon, closed-loop or paced by --rate.
 void CallWorker(LoadRun& run, int w) {
   for (int i; (i = run.Claim()) >= 0;) {
@@ -290,6 +354,10 @@ void CallWorker(LoadRun& run, int w) {
                           static_cast<int64_t>(1e6 * i / run.flags.rate));
       if (due >= run.end) return;
       std::this_thread::sleep_until(due);
+    }
+    if (!run.meshes.empty()) {
+      FillWorkerCall(run, w, i);
+      continue;
     }
     std::vector<Vec3> input;
     const auto request = run.RequestFor(i, &input);
@@ -390,7 +458,7 @@ void RunLoad(LoadFlags& f, Context* ctx) {
   while (f.seed == 0) f.seed = std::random_device{}();
   LoadRun run(f, *ctx);
   std::string error;
-  if (!LoadPolygons(f, &run.polygons, &error)) {
+  if (!LoadPolygons(f, &run.polygons, &run.meshes, &error)) {
     PrintError(error);
     RaiseExitCode(ctx, kExitUsage);
     return;

@@ -172,6 +172,35 @@ TEST_F(FillHolesCliTest, SeveralMeshesAndDirectoriesGoIntoOneDirectory) {
   EXPECT_FALSE(std::filesystem::exists(Path("one.ply")));
 }
 
+TEST_F(FillHolesCliTest, LoadTestsFillHolesWithRealMeshes) {
+  auto r = Dotctl("generate holes " + Path("torus.off") +
+                  " -k 2 -t 40 --seed 3 -o " + Path("load.off"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const bool local : {true, false}) {
+    r = Dotctl((local ? std::string("load --local") : flag_ + "load") +
+               " --meshes " + Path("load.off") + " " + Path("torus.off") +
+               " -r 6 -c 2 --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"requests\":6,\"succeeded\":6,\"errors\":0"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("\"call\":\"FillHoles\""), std::string::npos);
+    EXPECT_NE(r.out.find("\"p95\":"), std::string::npos);
+    // Ten buckets whose counts add up to the requests answered.
+    int total = 0, buckets = 0;
+    for (size_t at = 0;
+         (at = r.out.find("\"count\":", at)) != std::string::npos; at += 8) {
+      total += std::stoi(r.out.substr(at + 8));
+      ++buckets;
+    }
+    EXPECT_EQ(buckets, 10) << r.out;
+    EXPECT_EQ(total, 6) << r.out;
+  }
+  r = Dotctl("load --local --meshes " + Path("nothing.off") + " -r 2");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("nothing.off"), std::string::npos) << r.out;
+}
+
 TEST_F(FillHolesCliTest, DryRunListsTheHolesThroughTheServerAndLocally) {
   auto r = Dotctl("generate holes " + Path("torus.off") +
                   " -k 3 -t 40 --seed 5 -o " + Path("dry.off"));
