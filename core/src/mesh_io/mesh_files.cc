@@ -19,6 +19,7 @@
 #include "dot/io.h"
 #include "dot/triangulate.h"
 #include "mesh_io/mesh_formats.h"
+#include "mesh_io/off_fast.h"
 #include "mesh_io/polygon_triangles.h"
 #include "util/run_control.h"
 
@@ -420,6 +421,7 @@ Status ReadPolygonSoupFile(const std::string& path, PolygonSoup* out,
     if (!header.ok()) return header;
   }
   if (ext == ".off" || ext == ".ply" || ext == ".obj") {
+    if (ext == ".off" && ReadPlainOffFast(path, out)) return OkStatus();
     const Status s = ext == ".off"   ? ReadOff(path, out, notes)
                      : ext == ".ply" ? ReadPlyMesh(path, out, notes)
                                      : ReadObjMesh(path, out, notes);

@@ -180,6 +180,35 @@ TEST(MeshFormatsTest, OffColoursObjByteColoursAndLargeFacesAreKept) {
   for (const std::string& path : {off, obj, ply}) std::remove(path.c_str());
 }
 
+// Plain OFF goes through the fast reader: every double exactly as written,
+// comments, blank lines, CRLF and polygons as the careful reader takes
+// them; what it does not take (COFF, extra numbers, a bad item) goes to
+// the careful reader, whose errors name the line.
+TEST(MeshFormatsTest, PlainOffIsReadExactlyAndAnythingElseCarefully) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "# a comment\r\nOFF\r\n\n5 2 0 # counts\r\n";
+  std::vector<Vec3> points;
+  for (int v = 0; v < 5; ++v) {
+    points.push_back({0.1 * v + 1e-17 * v, std::sqrt(2.0) * v, -1.0 / (v + 3)});
+    text << points.back().x << ' ' << points.back().y << '\t' << points.back().z
+         << (v == 2 ? " # middle\r\n" : "\r\n");
+  }
+  text << "4 0 1 2 3\r\n\n3 0 3 4\n";
+  const std::string path = Write("fast.off", text.str());
+  PolygonSoup s;
+  ASSERT_TRUE(ReadPolygonSoupFile(path, &s).ok());
+  EXPECT_EQ(s.vertices, points);
+  EXPECT_EQ(s.faces, (FaceList{{0, 1, 2, 3}, {0, 3, 4}}));
+  const std::string bad =
+      Write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 x\n3 0 1 2\n");
+  const Status st = ReadPolygonSoupFile(bad, &s);
+  EXPECT_NE(st.message.find("line 5: vertex 2 of 3: 'x' is not a finite"),
+            std::string::npos)
+      << st.message;
+  for (const std::string& p : {path, bad}) std::remove(p.c_str());
+}
+
 TEST(MeshFormatsTest, BadFilesAreNamedByLineOrItem) {
   struct Case {
     const char* name;
