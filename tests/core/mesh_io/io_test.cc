@@ -9,14 +9,13 @@
 #include <utility>
 
 #include "dot/dot.h"
+#include "fixtures/temp_files.h"
 
 namespace dot {
 namespace {
 
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("dot_io_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
+  return testing::TempPath("io_test", name);
 }
 
 TEST(IoTest, PlainTextWithAndWithoutNormals) {

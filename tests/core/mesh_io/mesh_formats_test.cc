@@ -15,14 +15,13 @@
 #include <sstream>
 
 #include "dot/dot.h"
+#include "fixtures/temp_files.h"
 
 namespace dot {
 namespace {
 
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("dot_formats_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
+  return testing::TempPath("formats_test", name);
 }
 
 std::string Write(const std::string& name, const std::string& text) {

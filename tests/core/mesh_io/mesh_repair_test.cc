@@ -10,14 +10,13 @@
 
 #include "dot/dot.h"
 #include "fixtures/meshes.h"
+#include "fixtures/temp_files.h"
 
 namespace dot {
 namespace {
 
 std::string Temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("dot_repair_" + std::to_string(::getpid()) + "_" + name))
-      .string();
+  return testing::TempPath("repair", name);
 }
 
 // Two triangles of a square sharing the diagonal 0-2.
