@@ -62,6 +62,7 @@ struct FillFlags {
     o.set_no_repair(no_repair);
     o.set_time_budget_ms(time_budget_ms);
     o.set_dry_run(dry_run);
+    o.set_keep_polygons(!triangles);
     return o;
   }
 };
@@ -142,9 +143,9 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                 "list the holes (size, place, selected or why not) and fill "
                 "none; nothing is written");
   cmd->add_flag("--triangles", f->triangles,
-                "--local: write the repaired triangles (polygons "
-                "triangulated, attributes dropped); by default the mesh "
-                "keeps its polygons, normals, colours and UVs");
+                "write the repaired triangles (polygons triangulated; "
+                "normals, colours and UVs kept); by default the mesh keeps "
+                "its polygons where no patch split one");
   cmd->add_flag("--ascii", f->ascii,
                 "write PLY and STL as ASCII (default binary)");
   cmd->add_option("--time-budget-ms", f->time_budget_ms,
@@ -356,8 +357,7 @@ void FillOne(const FillFlags& f, Context* ctx,
     return;
   }
   if (f.local) {
-    o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress,
-                  /*keep_polygons=*/!f.triangles);
+    o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
   } else {
     if (!*channel) *channel = ChannelOrReport(ctx);
     if (!*channel) return;

@@ -8,6 +8,7 @@
 #include "cli/json_envelope.h"
 #include "remote_call.h"
 #include "wire/fill_wire.h"
+#include "wire/soup_wire.h"
 #include "wire/wire.h"
 
 namespace dot::client {
@@ -21,8 +22,7 @@ constexpr size_t kRequestBytes = 1 << 20;
 }  // namespace
 
 FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
-                      PolygonSoup soup, const FillProgressFn& on_progress,
-                      bool keep_polygons) {
+                      PolygonSoup soup, const FillProgressFn& on_progress) {
   const auto t0 = Clock::now();
   FillOutcome out;
   FillOptions options;
@@ -51,8 +51,6 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
       on_progress(clock.Report(phase, done, total));
     };
   }
-  options.keep_polygons =
-      keep_polygons && answer == v1::FILL_ANSWER_MESH && !options.dry_run;
   SoupFillResult r = FillSoup(std::move(soup), options, control, on_phase);
   out.notes = std::move(r.notes);
   out.status = wire::ToGrpcStatus(r.fill.status);
@@ -68,6 +66,7 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
     wire::FillReportToWire(r.fill.report, r.repair,
                            static_cast<size_t>(r.input_vertices),
                            static_cast<size_t>(r.input_faces), &out.report);
+    for (const std::string& note : out.notes) out.report.add_notes(note);
     if (answer == v1::FILL_ANSWER_PATCHES) {
       out.patches = PatchesAsSent(r, sent_vertices);
     } else if (!r.soup.faces.empty()) {
@@ -86,11 +85,6 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        double timeout_s, const FillProgressFn& on_progress) {
   const auto t0 = Clock::now();
   FillOutcome out;
-  for (const AttributeChannel& ch : mesh.attributes) {
-    out.notes.push_back("attribute '" + ch.name +
-                        "' dropped: a server answers with the repaired "
-                        "triangles (--local keeps attributes and polygons)");
-  }
   grpc::ClientContext context;
   context.set_deadline(
       std::chrono::system_clock::now() +
@@ -102,8 +96,14 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
     if (!stream->Write(request)) break;  // the server answered early
   }
   stream->WritesDone();
+  // Polygons or attributes kept come as a soup; plain triangles as before.
+  const bool as_sent = options.answer() == v1::FILL_ANSWER_MESH &&
+                       !options.dry_run() &&
+                       (!mesh.attributes.empty() || options.keep_polygons());
   wire::MeshAssembler assembler;
+  wire::SoupChunkReader soup(UINT32_MAX, UINT32_MAX);
   wire::PatchReader patches(mesh.vertices.size());
+  size_t chunk = 0;
   v1::FillHolesResponse response;
   bool have_report = false;
   Status assembled = OkStatus();
@@ -113,7 +113,10 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
         if (on_progress) on_progress(response.progress());
         break;
       case v1::FillHolesResponse::kMesh:
-        if (assembled.ok()) assembled = assembler.Add(response.mesh());
+        if (!assembled.ok()) break;
+        assembled = as_sent ? soup.Add(response.mesh(),
+                                       "mesh chunk " + std::to_string(chunk++))
+                            : assembler.Add(response.mesh());
         break;
       case v1::FillHolesResponse::kPatch:
         if (assembled.ok()) assembled = patches.Add(response.patch());
@@ -140,9 +143,18 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
   const size_t vertices =
       out.report.input_vertices() + out.report.added_vertices();
   const size_t faces = out.report.input_faces() + out.report.added_faces();
-  // A dry run's answer is the report alone.
-  if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH &&
-      !options.dry_run()) {
+  out.notes.assign(out.report.notes().begin(), out.report.notes().end());
+  if (assembled.ok() && as_sent) {
+    assembled = soup.Finish(&out.soup);
+    if (assembled.ok() && out.soup.vertices.size() != vertices) {
+      assembled = InvalidArgument(std::to_string(out.soup.vertices.size()) +
+                                  " vertices received, the report announced " +
+                                  std::to_string(vertices));
+    }
+    // A server that could not carry a channel drops it and says so.
+    out.as_sent = assembled.ok();
+  } else if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH &&
+             !options.dry_run()) {  // a dry run's answer is the report alone
     assembled = assembler.Finish(vertices, faces, {}, &out.mesh);
   }
   out.patches = std::move(patches.patches());

@@ -24,8 +24,8 @@ struct FillOutcome {
   v1::FillReport report;           // valid when status is OK or partial
   MeshData mesh;                   // the filled mesh (FILL_ANSWER_MESH)
   std::vector<SentPatch> patches;  // FILL_ANSWER_PATCHES
-  // FillLocal with keep_polygons: the filled mesh shaped as it was sent
-  // (polygons and attributes kept), in place of `mesh`.
+  // The filled mesh shaped as it was sent (its attribute channels, and
+  // its polygons with keep_polygons), in place of `mesh`.
   PolygonSoup soup;
   bool as_sent = false;
   // What was not carried (attributes dropped, a file's unread parts): for
@@ -45,15 +45,14 @@ using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 // unless options.no_repair, then FillHoles), with the server's defaults.
 // The soup is taken by value: move it in to hold the mesh once.
 // `on_progress` gets the same reports a server sends, one at a time.
-// `keep_polygons` (FillOptions::keep_polygons): the answer is `soup`, with
-// the input's polygons and attributes, instead of `mesh`.
+// The answer is `soup` (as_sent) when the mesh had attribute channels or
+// options.keep_polygons kept its polygons, else `mesh`.
 FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
                       PolygonSoup mesh,
-                      const FillProgressFn& on_progress = nullptr,
-                      bool keep_polygons = false);
+                      const FillProgressFn& on_progress = nullptr);
 
-// The server answers with triangles: the mesh's attributes are not sent
-// (a note names each).
+// The same over a server: the mesh's attribute channels are sent, and the
+// answer is shaped as FillLocal's.
 FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                        const v1::FillOptions& options, const PolygonSoup& mesh,
                        double timeout_s,

@@ -38,6 +38,9 @@ Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
   }
   o->repair = !wire.no_repair();
   o->dry_run = wire.dry_run();
+  // Patches are new triangles in the sent mesh's ids: nothing to regroup.
+  o->keep_polygons = wire.keep_polygons() &&
+                     wire.answer() == v1::FILL_ANSWER_MESH && !wire.dry_run();
   o->selection.through_vertices.reserve(wire.loops_through_size());
   for (uint32_t v : wire.loops_through()) {
     o->selection.through_vertices.push_back(
@@ -207,52 +210,17 @@ FillRequestWriter::FillRequestWriter(std::string id, v1::FillOptions options,
                                      const PolygonSoup& mesh, size_t max_bytes)
     : id_(std::move(id)),
       options_(std::move(options)),
-      mesh_(&mesh),
-      vertices_per_(std::max<size_t>(1, max_bytes / 24)),
-      indices_per_(std::max<size_t>(3, max_bytes / 5)) {
-  for (const auto& f : mesh.faces) all_triangles_ &= f.size() == 3;
-}
+      chunks_(mesh, max_bytes) {}
 
 bool FillRequestWriter::Next(v1::FillHolesRequest* m) {
   m->Clear();
-  if (first_) {  // id and options, and the first vertices with them
+  const bool first = first_;
+  if (first_) {  // id and options, and the first slice with them
     first_ = false;
     m->set_id(id_);
     *m->mutable_options() = options_;
   }
-  const PolygonSoup& mesh = *mesh_;
-  v1::MeshChunk* chunk = m->mutable_mesh();
-  if (next_vertex_ < mesh.vertices.size()) {
-    const size_t end =
-        std::min(mesh.vertices.size(), next_vertex_ + vertices_per_);
-    chunk->set_first_vertex(static_cast<uint32_t>(next_vertex_));
-    chunk->mutable_vertices()->Reserve(
-        static_cast<int>(3 * (end - next_vertex_)));
-    for (; next_vertex_ < end; ++next_vertex_) {
-      const Vec3& p = mesh.vertices[next_vertex_];
-      chunk->add_vertices(p.x);
-      chunk->add_vertices(p.y);
-      chunk->add_vertices(p.z);
-    }
-    return true;
-  }
-  if (next_face_ < mesh.faces.size()) {
-    chunk->set_first_vertex(static_cast<uint32_t>(mesh.vertices.size()));
-    chunk->set_first_triangle(static_cast<uint32_t>(next_face_));
-    size_t indices = 0;
-    for (; next_face_ < mesh.faces.size(); ++next_face_) {
-      const auto& f = mesh.faces[next_face_];
-      if (indices > 0 && indices + f.size() > indices_per_) break;
-      for (int32_t v : f) chunk->add_triangles(static_cast<uint32_t>(v));
-      if (!all_triangles_) {
-        chunk->add_face_sizes(static_cast<uint32_t>(f.size()));
-      }
-      indices += f.size();
-    }
-    return true;
-  }
-  // Only the first message of an empty mesh is still to go.
-  return m->has_options();
+  return chunks_.Next(m->mutable_mesh()) || first;  // an empty mesh: one
 }
 
 bool PatchWriter::Next(v1::HolePatch* m) {
@@ -269,9 +237,13 @@ bool PatchWriter::Next(v1::HolePatch* m) {
     m->add_vertices(p.new_vertices[vertex_].z);
     bytes += 27;
   }
+  // A triangle's corner values, over every channel.
+  size_t corner_bytes = 0;
+  for (const PatchChannel& c : p.attributes) corner_bytes += 12 * c.dims;
+  const size_t first_face = face_, first_piece = piece_;
   for (; face_ < p.faces.size() && bytes < max_bytes_; ++face_) {
     for (int32_t v : p.faces[face_]) m->add_faces(static_cast<uint32_t>(v));
-    bytes += 15;
+    bytes += 15 + corner_bytes;
   }
   for (; replaced_ < p.replaced_faces.size() && bytes < max_bytes_;
        ++replaced_) {
@@ -280,12 +252,23 @@ bool PatchWriter::Next(v1::HolePatch* m) {
     for (const Triangle& t : p.replacements[replaced_]) {
       for (int32_t v : t) r->add_triangles(static_cast<uint32_t>(v));
     }
-    bytes += 8 + 15 * p.replacements[replaced_].size();
+    piece_ += p.replacements[replaced_].size();
+    bytes += 8 + (15 + corner_bytes) * p.replacements[replaced_].size();
+  }
+  for (const PatchChannel& c : p.attributes) {
+    v1::CornerValues* values = m->add_attributes();
+    values->set_name(c.name);
+    values->set_dims(static_cast<uint32_t>(c.dims));
+    const size_t per = 3 * static_cast<size_t>(c.dims);  // a triangle's
+    values->mutable_faces()->Add(c.faces.begin() + first_face * per,
+                                 c.faces.begin() + face_ * per);
+    values->mutable_replaced()->Add(c.replaced.begin() + first_piece * per,
+                                    c.replaced.begin() + piece_ * per);
   }
   if (vertex_ == p.new_vertices.size() && face_ == p.faces.size() &&
       replaced_ == p.replaced_faces.size()) {
     ++patch_;
-    vertex_ = face_ = replaced_ = 0;
+    vertex_ = face_ = replaced_ = piece_ = 0;
   }
   return true;
 }
@@ -341,6 +324,39 @@ Status PatchReader::Add(const v1::HolePatch& m) {
                         static_cast<int32_t>(m.faces(i + 1)),
                         static_cast<int32_t>(m.faces(i + 2))});
   }
+  // Each message gives every channel's values for its own corners.
+  size_t replacing = 0;  // triangles in replaced_faces
+  for (const v1::ReplacedFace& r : m.replaced_faces())
+    replacing += static_cast<size_t>(r.triangles_size()) / 3;
+  if (!continues) {
+    for (const v1::CornerValues& c : m.attributes()) {
+      p->attributes.push_back({c.name(), static_cast<int>(c.dims()), {}, {}});
+    }
+  }
+  if (static_cast<size_t>(m.attributes_size()) != p->attributes.size()) {
+    return InvalidArgument(
+        "a patch message of hole " + std::to_string(m.hole()) + " has " +
+        std::to_string(m.attributes_size()) + " attribute channels, not " +
+        std::to_string(p->attributes.size()));
+  }
+  for (int i = 0; i < m.attributes_size(); ++i) {
+    const v1::CornerValues& c = m.attributes(i);
+    PatchChannel& to = p->attributes[static_cast<size_t>(i)];
+    const size_t dims = c.dims();
+    if (c.name() != to.name || c.dims() != static_cast<uint32_t>(to.dims) ||
+        dims == 0 ||
+        static_cast<size_t>(c.faces_size()) !=
+            dims * static_cast<size_t>(m.faces_size()) ||
+        static_cast<size_t>(c.replaced_size()) != 3 * dims * replacing) {
+      return InvalidArgument("a patch message of hole " +
+                             std::to_string(m.hole()) + ": attribute '" +
+                             c.name() +
+                             "' does not match the message's corners");
+    }
+    to.faces.insert(to.faces.end(), c.faces().begin(), c.faces().end());
+    to.replaced.insert(to.replaced.end(), c.replaced().begin(),
+                       c.replaced().end());
+  }
   for (const v1::ReplacedFace& r : m.replaced_faces()) {
     if (r.triangles_size() % 3 != 0) {
       return InvalidArgument("replaced face " + std::to_string(r.face()) +
@@ -373,112 +389,13 @@ Status FillRequestReader::Add(const v1::FillHolesRequest& m) {
         "and face_sizes moved into `mesh` (a MeshChunk) in dot.v1 "
         "revision 2; update the client");
   }
-  const v1::MeshChunk& c = m.mesh();  // this slice
-  if (c.vertices_size() % 3 != 0) {
-    return InvalidArgument(where + " has " + std::to_string(c.vertices_size()) +
-                           " coordinates, not a multiple of 3");
-  }
-  if (!c.vertices().empty() && !soup_.faces.empty()) {
-    return InvalidArgument(where + " sends vertices after faces");
-  }
-  if (!c.vertices().empty() && c.first_vertex() != soup_.vertices.size()) {
-    return InvalidArgument(
-        where + " starts at vertex " + std::to_string(c.first_vertex()) +
-        " but " + std::to_string(soup_.vertices.size()) +
-        " vertices have arrived (slices come in order, first_vertex set)");
-  }
-  if (!c.triangles().empty() && c.first_triangle() != soup_.faces.size()) {
-    return InvalidArgument(
-        where + " starts at face " + std::to_string(c.first_triangle()) +
-        " but " + std::to_string(soup_.faces.size()) +
-        " faces have arrived (slices come in order, first_triangle set)");
-  }
-  if (soup_.vertices.size() + c.vertices_size() / 3 > max_vertices_) {
-    return MakeStatus(StatusCode::kResourceExhausted,
-                      "the mesh has more than " +
-                          std::to_string(max_vertices_) +
-                          " vertices, the server's limit");
-  }
-  for (int i = 0; i < c.vertices_size(); i += 3) {
-    soup_.vertices.push_back(
-        {c.vertices(i), c.vertices(i + 1), c.vertices(i + 2)});
-  }
-  if (c.face_sizes().empty()) {
-    if (c.triangles_size() % 3 != 0) {
-      return InvalidArgument(where + " has " +
-                             std::to_string(c.triangles_size()) +
-                             " face indices, not a multiple of 3 (give "
-                             "face_sizes for polygons)");
-    }
-  } else {
-    size_t total = 0;
-    for (uint32_t k : c.face_sizes()) {
-      if (k < 3) {
-        return InvalidArgument(where + " has a face of " + std::to_string(k) +
-                               " corners; a face needs at least 3");
-      }
-      total += k;
-    }
-    if (total != static_cast<size_t>(c.triangles_size())) {
-      return InvalidArgument(
-          where + ": face_sizes add up to " + std::to_string(total) + " but " +
-          std::to_string(c.triangles_size()) + " face indices were sent");
-    }
-  }
-  const size_t faces = c.face_sizes().empty()
-                           ? static_cast<size_t>(c.triangles_size()) / 3
-                           : static_cast<size_t>(c.face_sizes_size());
-  if (soup_.faces.size() + faces > max_faces_) {
-    return MakeStatus(StatusCode::kResourceExhausted,
-                      "the mesh has more than " + std::to_string(max_faces_) +
-                          " faces, the server's limit");
-  }
-  // Corners, not faces, are what polygons cost (each is triangulated).
-  corners_ += static_cast<size_t>(c.triangles_size());
-  if (corners_ > 3 * max_faces_) {
-    return MakeStatus(StatusCode::kResourceExhausted,
-                      "the mesh's faces have more than " +
-                          std::to_string(3 * max_faces_) +
-                          " corners in all, the server's limit");
-  }
-  for (uint32_t k : c.face_sizes()) {
-    if (k > kMaxPolygonCorners) {
-      return InvalidArgument(
-          where + " has a face of " + std::to_string(k) + " corners; at most " +
-          std::to_string(kMaxPolygonCorners) + " are accepted");
-    }
-  }
-  int next = 0;
-  for (size_t f = 0; f < faces; ++f) {
-    const int k =
-        c.face_sizes().empty() ? 3 : static_cast<int>(c.face_sizes(f));
-    std::vector<int32_t> face;
-    for (int corner = 0; corner < k; ++corner) {
-      const uint32_t v = c.triangles(next++);
-      if (v >= soup_.vertices.size()) {
-        return InvalidArgument(
-            "face " + std::to_string(soup_.faces.size()) +
-            " has vertex index " + std::to_string(v) + ", but only " +
-            std::to_string(soup_.vertices.size()) + " vertices were sent");
-      }
-      face.push_back(static_cast<int32_t>(v));
-    }
-    soup_.faces.push_back(std::move(face));
-  }
-  return OkStatus();
+  return chunks_.Add(m.mesh(), where);
 }
 
 Status FillRequestReader::Finish(PolygonSoup* soup) {
   if (messages_ == 0) return InvalidArgument("no mesh was sent");
-  if (soup_.faces.empty()) return InvalidArgument("the mesh has no faces");
-  for (size_t v = 0; v < soup_.vertices.size(); ++v) {
-    if (!IsFinite(soup_.vertices[v])) {
-      return InvalidArgument("vertex " + std::to_string(v) +
-                             " has a non-finite coordinate");
-    }
-  }
-  *soup = std::move(soup_);
-  return OkStatus();
+  if (chunks_.faces() == 0) return InvalidArgument("the mesh has no faces");
+  return chunks_.Finish(soup);
 }
 
 }  // namespace dot::wire

@@ -13,6 +13,7 @@
 
 #include "dot/dot.h"
 #include "dot/v1/triangulation.pb.h"
+#include "wire/soup_wire.h"
 
 namespace dot::wire {
 
@@ -55,8 +56,8 @@ Escalation EscalationFromWire(v1::Escalation escalation);
 
 // The request stream of a mesh, built one message at a time as the stream
 // asks (an upload never holds a second copy of the mesh): the first message
-// carries id and options, then MeshChunk slices of vertices, then of faces
-// (polygons with their corner counts), each message at most about
+// carries id and options with the first slice, then SoupChunkWriter's
+// slices (vertices, faces, attribute channels), each message at most about
 // `max_bytes`. `mesh` must outlive the writer.
 class FillRequestWriter {
  public:
@@ -68,10 +69,8 @@ class FillRequestWriter {
  private:
   std::string id_;
   v1::FillOptions options_;
-  const PolygonSoup* mesh_;
-  bool all_triangles_ = true, first_ = true;
-  size_t vertices_per_, indices_per_;
-  size_t next_vertex_ = 0, next_face_ = 0;
+  SoupChunkWriter chunks_;
+  bool first_ = true;
 };
 
 // Patches (FILL_ANSWER_PATCHES) to messages of at most about `max_bytes`;
@@ -86,6 +85,7 @@ class PatchWriter {
   const std::vector<SentPatch>* patches_;
   size_t max_bytes_;
   size_t patch_ = 0, vertex_ = 0, face_ = 0, replaced_ = 0;
+  size_t piece_ = 0;  // replacement triangles given so far
 };
 
 // Reassembles the patches of a FillHoles answer, checking that each message
@@ -104,31 +104,28 @@ class PatchReader {
   std::vector<SentPatch> patches_;
 };
 
-// Collects a request stream into a polygon soup, refusing (naming the
-// message and the problem) what does not fit: partial coordinates, sizes
-// that do not add up, more than `max_vertices` vertices or `max_faces`
-// faces (or 3 x `max_faces` corners), polygons of more than 1000 corners.
+// Collects a request stream into a polygon soup (SoupChunkReader, which
+// names what does not fit), id and options from the first message.
 class FillRequestReader {
  public:
   FillRequestReader(size_t max_vertices, size_t max_faces)
-      : max_vertices_(max_vertices), max_faces_(max_faces) {}
+      : chunks_(max_vertices, max_faces) {}
   Status Add(const v1::FillHolesRequest& request);
   // The soup; indices are checked by the core (RepairMesh / FillHoles).
   Status Finish(PolygonSoup* soup);
   const std::string& id() const { return id_; }
   const v1::FillOptions& options() const { return options_; }
   // What has arrived so far.
-  size_t vertices() const { return soup_.vertices.size(); }
-  size_t faces() const { return soup_.faces.size(); }
+  size_t vertices() const { return chunks_.vertices(); }
+  size_t faces() const { return chunks_.faces(); }
+  int64_t attribute_bytes() const { return chunks_.attribute_bytes(); }
   size_t messages() const { return messages_; }
 
  private:
-  static constexpr uint32_t kMaxPolygonCorners = 1000;
-  size_t max_vertices_, max_faces_;
-  size_t messages_ = 0, corners_ = 0;
+  size_t messages_ = 0;
   std::string id_;
   v1::FillOptions options_;
-  PolygonSoup soup_;
+  SoupChunkReader chunks_;
 };
 
 }  // namespace dot::wire

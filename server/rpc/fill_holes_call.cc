@@ -21,10 +21,12 @@ Status FillHolesCall::Run(PolygonSoup soup, const Control& control,
   result_ = FillSoup(std::move(soup), options_, control, on_progress);
   if (options_.dry_run) {
     result_.fill.mesh = {};  // the report is the answer
+    result_.soup = {};
   } else if ((result_.fill.status.ok() || result_.fill.partial) &&
              answer_ == v1::FILL_ANSWER_PATCHES) {
     patches_ = PatchesAsSent(result_, sent_vertices);
     result_.fill.mesh = {};  // the patches are the answer
+    result_.soup = {};
   }
   const FillReport& r = result_.fill.report;
   if (result_.input_faces > 0) {
@@ -43,11 +45,13 @@ void FillHolesCall::Next(const std::string& id, size_t chunk_bytes,
   if (!chunks_) {
     chunks_.emplace(result_.fill.mesh.vertices, result_.fill.mesh.triangles, 0,
                     chunk_bytes);
+    soup_chunks_.emplace(result_.soup, chunk_bytes);
     patch_writer_.emplace(patches_, chunk_bytes);
   }
   message->Clear();
   message->set_id(id);
   if (chunks_->Next(message->mutable_mesh()) ||
+      soup_chunks_->Next(message->mutable_mesh()) ||
       patch_writer_->Next(message->mutable_patch())) {
     return;
   }
@@ -55,6 +59,9 @@ void FillHolesCall::Next(const std::string& id, size_t chunk_bytes,
                          static_cast<size_t>(result_.input_vertices),
                          static_cast<size_t>(result_.input_faces),
                          message->mutable_report());
+  for (const std::string& note : result_.notes) {
+    message->mutable_report()->add_notes(note);
+  }
   done_ = true;
 }
 

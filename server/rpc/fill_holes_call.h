@@ -3,7 +3,8 @@
 // checked once and put under the server's limits, the fill itself
 // (dot::FillSoup, the function dotctl --local and the benchmark run too),
 // and the answer as response messages, made one at a time: the filled mesh
-// in chunks or only the patches (FILL_ANSWER_PATCHES), then the report.
+// in chunks (its polygons and attribute channels with them, when kept) or
+// only the patches (FILL_ANSWER_PATCHES), then the report.
 // The reactor reads, admits, starts and writes; this is what it runs.
 #ifndef DOT_SERVER_RPC_FILL_HOLES_CALL_H_
 #define DOT_SERVER_RPC_FILL_HOLES_CALL_H_
@@ -46,6 +47,7 @@ class FillHolesCall {
   SoupFillResult result_;
   std::vector<SentPatch> patches_;  // FILL_ANSWER_PATCHES
   std::optional<wire::MeshChunker> chunks_;
+  std::optional<wire::SoupChunkWriter> soup_chunks_;  // result_.soup's
   std::optional<wire::PatchWriter> patch_writer_;
   bool done_ = false;
 };

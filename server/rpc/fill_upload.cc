@@ -25,9 +25,12 @@ grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
   }
   const Status s = reader_.Add(m);
   if (!s.ok()) return wire::ToGrpcStatus(s);
+  // Attribute channels are held about three times: as sent, traced
+  // through the repair, and in the answer.
   const int64_t bytes =
       FillMemoryBytes(static_cast<int64_t>(reader_.vertices()),
-                      static_cast<int64_t>(reader_.faces()));
+                      static_cast<int64_t>(reader_.faces())) +
+      3 * reader_.attribute_bytes();
   const int64_t budget = runner_->options().fill_memory_bytes;
   if (bytes > budget) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,

@@ -116,24 +116,28 @@ TEST_F(FillHolesCliTest, LocalFillKeepsQuadsColoursAndUvs) {
       EXPECT_LE(x, 1.0f) << ch.name;
     }
   }
-  // PLY too; --triangles gives the repaired triangles, attributes dropped
-  // with a note; so does a server.
-  r = Dotctl("fill-holes --local --skip-longest " + Path("quads.obj") +
-             " -q -o " + Path("kept.ply"));
-  ASSERT_EQ(r.code, 0) << r.out;
-  PolygonSoup ply;
-  ASSERT_TRUE(ReadPolygonSoupFile(Path("kept.ply"), &ply).ok());
-  EXPECT_EQ(ply.faces.size(), kept.faces.size());
-  EXPECT_EQ(ply.attributes.size(), 2u);
-  for (const std::string& how : {std::string("--local --triangles "), flag_}) {
-    r = Dotctl("fill-holes --skip-longest " + how + Path("quads.obj") + " -o " +
-               Path("tri.obj"));
+  // PLY too, and a server answers the same mesh: polygons and channels
+  // travel both ways.
+  for (const std::string& how : {std::string("--local "), flag_}) {
+    r = Dotctl("fill-holes --skip-longest " + how + Path("quads.obj") +
+               " -q -o " + Path("kept.ply"));
+    ASSERT_EQ(r.code, 0) << how << r.out;
+    PolygonSoup ply;
+    ASSERT_TRUE(ReadPolygonSoupFile(Path("kept.ply"), &ply).ok());
+    EXPECT_EQ(ply.faces, kept.faces) << how;
+    ASSERT_EQ(ply.attributes.size(), 2u) << how;
+    EXPECT_EQ(ply.vertices.size(), kept.vertices.size()) << how;
+  }
+  // --triangles gives the repaired triangles, the channels still on them.
+  for (const std::string& how : {std::string("--local "), flag_}) {
+    r = Dotctl("fill-holes --skip-longest --triangles " + how +
+               Path("quads.obj") + " -o " + Path("tri.obj"));
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("note: attribute 'uv' dropped"), std::string::npos)
-        << r.out;
+    EXPECT_EQ(r.out.find("note: attribute"), std::string::npos) << r.out;
     PolygonSoup tri;
     ASSERT_TRUE(ReadPolygonSoupFile(Path("tri.obj"), &tri).ok());
     for (FaceView f : tri.faces) ASSERT_EQ(f.size(), 3u);
+    EXPECT_EQ(tri.attributes.size(), 2u) << how;
   }
 }
 

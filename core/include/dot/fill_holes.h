@@ -112,10 +112,10 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //                   false: only triangulate its polygons. Default true.
 //  keep_polygons    FillSoup only: give the result as SoupFillResult::soup,
 //                   shaped as the soup was sent: its polygons kept where no
-//                   patch split them, its attribute channels (normals,
-//                   colours, UVs, ...) carried and interpolated into every
-//                   new corner (fill.mesh is moved there). false: the
-//                   triangles of fill.mesh, attributes dropped with a note.
+//                   patch split them (fill.mesh is moved there). false: the
+//                   triangles of fill.mesh. Either way the soup's attribute
+//                   channels (normals, colours, UVs, ...) are carried and
+//                   interpolated into every new corner (see fill_soup.h).
 //                   Default false.
 //  dry_run          find and select the holes, fill none: every selected
 //                   hole is reported kListed with its size, the mesh is

@@ -27,10 +27,12 @@ struct SoupFillResult {
   // The repaired mesh that was filled: the first input_vertices vertices
   // of fill.mesh are its vertices.
   int64_t input_vertices = 0, input_faces = 0;
-  // With FillOptions::keep_polygons, when fill has a mesh and the soup had
-  // polygons or attributes to keep: that mesh (moved here, fill.mesh left
-  // empty) with them (see the option); vertex ids as in fill.mesh. Empty
-  // otherwise (a soup of plain triangles is answered in fill.mesh alone).
+  // When fill has a mesh and the soup had attribute channels, or polygons
+  // and FillOptions::keep_polygons: that mesh (moved here, fill.mesh left
+  // empty) with its channels carried; vertex ids as in fill.mesh. With
+  // keep_polygons its faces are regrouped into the polygons sent; without,
+  // they are fill.mesh's triangles, in order. Empty otherwise (a soup of
+  // plain triangles is answered in fill.mesh alone).
   PolygonSoup soup;
   // What was not carried (an attribute channel dropped, and why).
   std::vector<std::string> notes;
@@ -56,7 +58,14 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options = {},
 // replace all of it (a polygon's other triangles included), once: by the
 // last patch that splits it, when two do. Faces agree with the repaired
 // orientation (RepairReport::reoriented_faces says whether the soup's own
-// faces were flipped).
+// faces were flipped). With attribute channels, each patch gives every
+// channel's values at the corners of its faces and replacements.
+struct PatchChannel {
+  std::string name;
+  int dims = 0;
+  std::vector<float> faces;     // dims per corner of SentPatch::faces
+  std::vector<float> replaced;  // of each replacement's triangles, in order
+};
 struct SentPatch {
   int32_t hole = 0;  // HoleReport::id
   int32_t first_vertex = 0;
@@ -64,8 +73,10 @@ struct SentPatch {
   std::vector<Triangle> faces;
   std::vector<int32_t> replaced_faces;
   std::vector<std::vector<Triangle>> replacements;
+  std::vector<PatchChannel> attributes;  // result.soup's channels, in order
 };
-// `soup_vertices`: how many vertices the soup had as sent.
+// `soup_vertices`: how many vertices the soup had as sent. The fill must
+// have run without FillOptions::keep_polygons.
 std::vector<SentPatch> PatchesAsSent(const SoupFillResult& result,
                                      int64_t soup_vertices);
 

@@ -219,7 +219,7 @@ SoupTrace TraceSoup(const FaceList& faces,
 
 PolygonSoup SoupOfFill(FillResult* fill,
                        const std::vector<int32_t>& face_origin,
-                       int64_t input_faces, SoupTrace trace,
+                       int64_t input_faces, SoupTrace trace, bool regroup,
                        std::vector<std::string>* notes) {
   CornerEntries corners;
   if (!CarryThroughFill(*fill, input_faces, &trace, &corners)) {
@@ -238,7 +238,7 @@ PolygonSoup SoupOfFill(FillResult* fill,
   fill->mesh.vertices = {};
   // Triangles grouped by the input face they come from (counting sort);
   // a group with a split face is given as its triangles.
-  const auto n_in = static_cast<size_t>(input_faces);
+  const auto n_in = regroup ? static_cast<size_t>(input_faces) : size_t{0};
   int32_t origins = 0;
   for (size_t t = 0; t < n_in; ++t)
     origins = std::max(origins, face_origin[t] + 1);
@@ -251,7 +251,9 @@ PolygonSoup SoupOfFill(FillResult* fill,
   }
   std::vector<bool> split(n_in, false);
   for (const FilledHole& h : fill->patches) {
-    for (int32_t f : h.patch.split_faces) split[f] = true;
+    for (int32_t f : h.patch.split_faces) {
+      if (static_cast<size_t>(f) < n_in) split[f] = true;
+    }
   }
   std::vector<std::vector<int32_t>> out_entries(trace.channels.size());
   std::vector<int32_t> ids;

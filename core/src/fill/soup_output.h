@@ -52,14 +52,15 @@ SoupTrace TraceSoup(const FaceList& faces,
                     std::vector<AttributeChannel> channels,
                     const RepairReport& repair, const MeshData& repaired);
 
-// `fill`'s mesh (moved out) as a soup: the first `input_faces` triangles
-// regrouped into the polygons they were cut from (by `face_origin`) unless
-// a patch split one, then the new triangles; the trace's channels on its
-// corners, kept per vertex where no vertex has corners that disagree.
-// `notes` receives what could not be carried.
+// `fill`'s mesh (moved out) as a soup: with `regroup`, the first
+// `input_faces` triangles regrouped into the polygons they were cut from
+// (by `face_origin`) unless a patch split one, then the new triangles;
+// without, fill.mesh's triangles one face each, in their order. The
+// trace's channels on its corners, kept per vertex where no vertex has
+// corners that disagree. `notes` receives what could not be carried.
 PolygonSoup SoupOfFill(FillResult* fill,
                        const std::vector<int32_t>& face_origin,
-                       int64_t input_faces, SoupTrace trace,
+                       int64_t input_faces, SoupTrace trace, bool regroup,
                        std::vector<std::string>* notes);
 
 }  // namespace dot

@@ -217,7 +217,10 @@ TEST(FillSoupTest, APolygonTwoHolesSplitIsReplacedOnceByTheLaterPatch) {
   r.repair.face_origin = {0, 0};  // both triangles come from soup face 0
   r.fill.mesh.vertices = {{0, 0, 0}, {1, 0, 0},  {1, 1, 0},
                           {0, 1, 0}, {.5, 0, 0}, {.5, 1, 0}};
-  r.fill.mesh.triangles = {{0, 4, 2}, {0, 2, 5}, {4, 1, 2}, {5, 2, 3}};
+  // As FillHoles merges: each split face's first piece in its place, its
+  // other pieces, then the hole's patch.
+  r.fill.mesh.triangles = {{0, 4, 2}, {0, 2, 5}, {4, 1, 2},
+                           {4, 1, 9}, {5, 2, 3}, {5, 3, 8}};
   FilledHole first{0, 4, {{{.5, 0, 0}}, {{4, 1, 9}}, {0}, {}}};
   first.patch.pieces = {{{0, 4, 2}, {4, 1, 2}}};
   FilledHole second{1, 5, {{{.5, 1, 0}}, {{5, 3, 8}}, {1}, {}}};

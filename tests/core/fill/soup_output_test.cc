@@ -264,14 +264,77 @@ TEST(SoupOutputTest, AttributesThatDoNotFitTheSoupAreRefusedByName) {
       << r.fill.status.message;
 }
 
-TEST(SoupOutputTest, WithoutKeepPolygonsAttributesAreDroppedWithANote) {
+// Without keep_polygons the answer is the fill's triangles, in order, and
+// the channels ride on them.
+TEST(SoupOutputTest, WithoutKeepPolygonsTheTrianglesCarryTheAttributes) {
   PolygonSoup sent = QuadGridWithHole(6, 2, 4);
-  sent.attributes = {{"height", 1, std::vector<float>(49, 1.0f), {}}};
+  sent.attributes = {{"height", 1, {}, {}}};
+  for (const Vec3& p : sent.vertices)
+    sent.attributes[0].values.push_back(static_cast<float>(p.x + 2 * p.y));
   const SoupFillResult r = FillSoup(sent);
   ASSERT_TRUE(r.fill.status.ok());
-  ASSERT_EQ(r.notes.size(), 1u);
-  EXPECT_NE(r.notes[0].find("'height' dropped"), std::string::npos);
-  EXPECT_FALSE(r.fill.mesh.triangles.empty());
+  EXPECT_TRUE(r.notes.empty());
+  EXPECT_TRUE(r.fill.mesh.triangles.empty());  // moved into the soup
+  ASSERT_TRUE(CheckAttributes(r.soup).ok());
+  const int64_t triangles = r.input_faces + r.fill.report.added_faces;
+  ASSERT_EQ(static_cast<int64_t>(r.soup.faces.size()), triangles);
+  for (FaceView f : r.soup.faces) EXPECT_EQ(f.size(), 3u);
+  const AttributeChannel& h = r.soup.attributes[0];
+  for (size_t v = 0; v < sent.vertices.size(); ++v) {
+    EXPECT_EQ(h.entry(v)[0], sent.attributes[0].values[v]);
+  }
+}
+
+// The patches answer gives each channel at every corner of a patch's faces
+// and replacements: the values the whole filled mesh has there.
+TEST(SoupOutputTest, PatchesGiveTheFilledMeshsCornerValues) {
+  PolygonSoup sent = QuadGridWithHole(8, 3, 5);
+  AttributeChannel uv{"uv", 2, {}, {}};  // per corner, a seam along x = 4
+  for (FaceView f : sent.faces) {
+    const bool right = sent.vertices[f[0]].x >= 4;
+    for (int32_t v : f) {
+      uv.indices.push_back(static_cast<int32_t>(uv.entries()));
+      const Vec3& p = sent.vertices[v];
+      uv.values.insert(uv.values.end(), {static_cast<float>(p.x / 8 + right),
+                                         static_cast<float>(p.y / 8)});
+    }
+  }
+  sent.attributes = {uv};
+  const auto n = static_cast<int64_t>(sent.vertices.size());
+  const SoupFillResult r = FillSoup(sent);
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  ASSERT_EQ(r.fill.report.filled, 1);
+  const std::vector<SentPatch> patches = PatchesAsSent(r, n);
+  ASSERT_EQ(patches.size(), 1u);
+  const SentPatch& p = patches[0];
+  ASSERT_EQ(p.attributes.size(), 1u);
+  EXPECT_EQ(p.attributes[0].name, "uv");
+  ASSERT_EQ(p.attributes[0].faces.size(), 6 * p.faces.size());
+  size_t pieces = 0;
+  for (const auto& t : p.replacements) pieces += t.size();
+  ASSERT_EQ(p.attributes[0].replaced.size(), 6 * pieces);
+  // The patch's faces are the soup's last triangles, in order.
+  const AttributeChannel& ch = r.soup.attributes[0];
+  const size_t first = r.soup.faces.size() - p.faces.size();
+  for (size_t k = 0; k < p.faces.size(); ++k) {
+    for (size_t c = 0; c < 3; ++c) {
+      const float* want =
+          At(ch, 3 * (first + k) + c, r.soup.faces[first + k][c]);
+      EXPECT_EQ(p.attributes[0].faces[6 * k + 2 * c], want[0]);
+      EXPECT_EQ(p.attributes[0].faces[6 * k + 2 * c + 1], want[1]);
+    }
+  }
+  // Replacement pieces lie in the quad they replace: their u is on that
+  // quad's side of the seam, their v within the grid.
+  size_t at = 0;
+  for (size_t q = 0; q < p.replaced_faces.size(); ++q) {
+    const bool right = sent.vertices[sent.faces[p.replaced_faces[q]][0]].x >= 4;
+    for (size_t t = 0; t < 3 * p.replacements[q].size(); ++t, at += 2) {
+      const float u = p.attributes[0].replaced[at];
+      EXPECT_GE(u, right ? 1.0f : 0.0f);
+      EXPECT_LE(u, right ? 2.0f : 1.0f);
+    }
+  }
 }
 
 }  // namespace
