@@ -451,6 +451,9 @@ class Client:
                    no_repair: Optional[bool] = None,
                    time_budget_ms: Optional[int] = None,
                    memory_budget_bytes: Optional[int] = None,
+                   keep_polygons: Optional[bool] = None,
+                   point_data: Optional[Dict[str, ArrayLike]] = None,
+                   corner_data: Optional[Dict[str, ArrayLike]] = None,
                    progress: Optional[Callable[[FillProgress], None]] = None,
                    request_id: str = "",
                    timeout: Optional[float] = _DEFAULT,
@@ -486,7 +489,19 @@ class Client:
         (refinement, 0: sqrt(2)), ``fairing_continuity`` (0, 1 or 2;
         None: 1), ``no_repair`` (use the mesh exactly as sent: then the
         output's first V vertices and, except faces listed in a hole's
-        ``split_faces``, its first faces are the input's).
+        ``split_faces``, its first faces are the input's),
+        ``keep_polygons`` (answer the polygons sent where no patch split
+        one, as a list of arrays, instead of triangles).
+
+        Attributes (normals, colours, UVs, any float data): ``point_data``
+        {name: (V, d) array}, a row per vertex, and ``corner_data`` {name:
+        (C, d) array}, a row per face corner (faces in order, corners in
+        order: what carries UV seams); 1 to 16 floats a row, at most 16
+        channels. They come back in the result's ``point_data`` and
+        ``corner_data``, carried through the repair and interpolated into
+        every new vertex (harmonic from the hole's rim, seams continued;
+        a channel named ``"normal"`` gets the patch's own normals, one
+        named ``"color"`` stays in [0, 1]).
 
         ``progress(FillProgress)`` is called as the server's phases start
         (repair, loops, holes, merge) and as holes are done, with an
@@ -509,13 +524,18 @@ class Client:
             absolute_weights=absolute_weights, density=density,
             fairing_continuity=fairing_continuity, no_repair=no_repair,
             time_budget_ms=time_budget_ms,
-            memory_budget_bytes=memory_budget_bytes)
+            memory_budget_bytes=memory_budget_bytes,
+            keep_polygons=keep_polygons)
         result: FillResult = self._fill(vertices, faces, o, "mesh", progress,
-                                        request_id, timeout, cancel)
+                                        request_id, timeout, cancel,
+                                        point_data=point_data,
+                                        corner_data=corner_data)
         return result
 
     def fill_patches(self, vertices: ArrayLike, faces: FaceLike, *,
                      options: Optional[FillOptions] = None,
+                     point_data: Optional[Dict[str, ArrayLike]] = None,
+                     corner_data: Optional[Dict[str, ArrayLike]] = None,
                      progress: Optional[Callable[[FillProgress], None]] = None,
                      request_id: str = "",
                      timeout: Optional[float] = _DEFAULT,
@@ -529,13 +549,17 @@ class Client:
         Takes the arguments of :meth:`fill_holes`: ``options`` (a
         :class:`FillOptions`) and, as keyword arguments, any of its fields
         or metric weights, which replace the options' (``stage="refine",
-        loops_through=[17]``). Returns a :class:`FillPatches` (patches,
+        loops_through=[17]``), and ``point_data`` / ``corner_data`` as
+        :meth:`fill_holes` does: each patch then has every channel's values
+        at the corners of its faces (``HolePatch.corner_data``) and of its
+        replacement triangles. Returns a :class:`FillPatches` (patches,
         report).
         """
         o = FillOptions.merged(options, **changes)
         patches: FillPatches = self._fill(vertices, faces, o, "patches",
                                           progress, request_id, timeout,
-                                          cancel)
+                                          cancel, point_data=point_data,
+                                          corner_data=corner_data)
         return patches
 
     def list_holes(self, vertices: ArrayLike, faces: FaceLike, *,
@@ -559,9 +583,14 @@ class Client:
               options: FillOptions, answer: str,
               progress: Optional[Callable[[FillProgress], None]],
               request_id: str, timeout: Any,
-              cancel: Optional[CancelToken], dry_run: bool = False) -> Any:
+              cancel: Optional[CancelToken], dry_run: bool = False,
+              point_data: Optional[Dict[str, ArrayLike]] = None,
+              corner_data: Optional[Dict[str, ArrayLike]] = None) -> Any:
         v = check.points("vertices", vertices)
         f = check.faces(faces, len(v))
+        corners = (f.size if isinstance(f, np.ndarray)
+                   else sum(len(face) for face in f))
+        channels = check.attributes(point_data, corner_data, len(v), corners)
         for i, vertex in enumerate(options.loops_through):
             if vertex >= len(v):
                 raise InvalidInput(
@@ -569,11 +598,15 @@ class Client:
                     f"mesh (it has {len(v)})")
         message = options.to_proto(answer, dry_run)
         deadline = self._deadline(timeout)
-        requests = wire.fill_requests(str(request_id), message, v, f)
+        requests = wire.fill_requests(str(request_id), message, v, f,
+                                      channels=channels)
         call = self._stub.FillHoles(requests, timeout=deadline)
         if answer == "mesh":
+            as_sent = bool(channels) or options.keep_polygons
+            per_corner = [name for name, corner, _ in channels if corner]
             return self._run(call, cancel, lambda c: wire.assemble_fill(
-                c, on_progress=progress))
+                c, on_progress=progress, as_sent=as_sent,
+                per_corner=per_corner))
         return self._run(call, cancel, lambda c: wire.assemble_patches(
             c, on_progress=progress, sent_vertices=len(v)))
 

@@ -292,11 +292,21 @@ class FillReport(_Plain):
 @dataclass
 class FillResult(_Plain):
     """A filled mesh: ``vertices`` float64 (V, 3), the (repaired) input's
-    first, then new ones; ``faces`` int32 (F, 3); ``report`` the
-    :class:`FillReport`."""
+    first, then new ones; ``faces`` int32 (F, 3), or with
+    ``keep_polygons`` a list of int32 arrays (the polygons sent where no
+    patch split one, then triangles); ``report`` the :class:`FillReport`.
+
+    ``point_data`` and ``corner_data``: the attribute channels sent
+    (float32 arrays), carried through the repair and interpolated into
+    every new vertex and corner: a row per vertex, or a row per face
+    corner (faces in order, corners in order; a UV seam gives one vertex
+    several). A channel comes back per vertex when no vertex has corners
+    that disagree, else per corner."""
     vertices: np.ndarray
-    faces: np.ndarray
+    faces: Any
     report: FillReport
+    point_data: Dict[str, np.ndarray] = field(default_factory=dict)
+    corner_data: Dict[str, np.ndarray] = field(default_factory=dict)
 
 
 @dataclass
@@ -312,13 +322,19 @@ class HolePatch(_Plain):
     duplicate the server's repair merged is named by its first copy).
     ``replaced_faces``: {sent face id: int32 (K, 3) triangles}, the sent
     faces edge protection split, each with the triangles that replace all
-    of it.
+    of it. With attribute channels sent: ``corner_data`` {name: float32
+    (3M, d)}, each channel's values at the corners of ``faces`` in order,
+    and ``replaced_corner_data`` {sent face id: {name: (3K, d)}}, at the
+    corners of its replacement triangles.
     """
     hole: int
     first_vertex: int
     vertices: np.ndarray
     faces: np.ndarray
     replaced_faces: Dict[int, np.ndarray] = field(default_factory=dict)
+    corner_data: Dict[str, np.ndarray] = field(default_factory=dict)
+    replaced_corner_data: Dict[int, Dict[str, np.ndarray]] = field(
+        default_factory=dict)
 
 
 FaceList = Union[np.ndarray, List[np.ndarray]]
@@ -678,6 +694,9 @@ class FillOptions(_Options):
     False: duplicate vertices merged, degenerate and duplicate faces
     dropped, polygons triangulated, faces oriented). ``time_budget_ms``,
     ``memory_budget_bytes``: lower the server's limits (0: the server's).
+    ``keep_polygons``: :meth:`Client.fill_holes` answers the polygons sent
+    (quads, n-gons) where no patch split one, instead of triangles
+    (default False).
     """
     _weights_use = "fill"
 
@@ -694,6 +713,7 @@ class FillOptions(_Options):
     no_repair: bool = False
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
+    keep_polygons: bool = False
 
     def __post_init__(self) -> None:
         _set(self, "stage", check.choice("stage", self.stage,
@@ -725,6 +745,8 @@ class FillOptions(_Options):
             _set(self, "fairing_continuity", check.integer(
                 "fairing_continuity", self.fairing_continuity, 0, 2))
         _set(self, "no_repair", check.flag("no_repair", self.no_repair))
+        _set(self, "keep_polygons", check.flag("keep_polygons",
+                                               self.keep_polygons))
         _set(self, "time_budget_ms", check.integer("time_budget_ms",
                                                    self.time_budget_ms))
         _set(self, "memory_budget_bytes", check.integer(
@@ -754,4 +776,5 @@ class FillOptions(_Options):
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
         o.dry_run = dry_run
+        o.keep_polygons = self.keep_polygons
         return o

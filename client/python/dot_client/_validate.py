@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any, List, Optional, Sequence, Union
+from typing import Any, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -137,4 +137,49 @@ def faces(value: Any, vertex_count: int) -> Union[np.ndarray, List[np.ndarray]]:
                 f"face {i} has vertex index {int(a[bad][0])}, but there are "
                 f"only {vertex_count} vertices")
         out.append(a.astype(np.int64))
+    return out
+
+
+def attributes(point_data: Any, corner_data: Any, vertex_count: int,
+               corner_count: int) -> List[Tuple[str, bool, np.ndarray]]:
+    """Attribute channels as (name, per_corner, float32 (n, d) values):
+    ``point_data`` a dict of arrays with a row per vertex, ``corner_data``
+    one with a row per face corner (faces in order); 1 to 16 floats a row,
+    finite, at most 16 channels, names unique, 1 to 64 bytes."""
+    out: List[Tuple[str, bool, np.ndarray]] = []
+    for per_corner, data, rows, what in (
+            (False, point_data, vertex_count, "vertices"),
+            (True, corner_data, corner_count, "face corners")):
+        if data is None:
+            continue
+        if not isinstance(data, dict):
+            raise InvalidInput(
+                f"{'corner' if per_corner else 'point'}_data must be a dict "
+                f"of arrays; got {type(data).__name__}")
+        for name, value in data.items():
+            if not isinstance(name, str) or not 1 <= len(name.encode()) <= 64:
+                raise InvalidInput(
+                    f"attribute name {name!r} must be a string of 1 to 64 "
+                    f"bytes")
+            if any(name == n for n, _, _ in out):
+                raise InvalidInput(f"attribute {name!r} is given twice")
+            try:
+                a = np.asarray(value, dtype=np.float32)
+            except (TypeError, ValueError) as e:
+                raise InvalidInput(f"attribute {name!r} must be numbers: {e}"
+                                   ) from None
+            if a.ndim == 1:
+                a = a.reshape(-1, 1)
+            if a.ndim != 2 or not 1 <= a.shape[1] <= 16 or len(a) != rows:
+                raise InvalidInput(
+                    f"attribute {name!r} must have shape ({rows}, d), "
+                    f"1 <= d <= 16 (a row per {what[:-1]}); got "
+                    f"shape {a.shape}")
+            finite = np.isfinite(a).all(axis=1)
+            if not finite.all():
+                raise InvalidInput(f"attribute {name!r} row "
+                                   f"{int(np.argmin(finite))} is not finite")
+            out.append((name, per_corner, np.ascontiguousarray(a)))
+    if len(out) > 16:
+        raise InvalidInput(f"{len(out)} attribute channels; at most 16")
     return out

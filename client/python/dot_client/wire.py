@@ -122,6 +122,149 @@ class MeshAssembler:
         return vertices, signed.astype(np.int32)
 
 
+class SoupAssembler:
+    """Reassembles a polygon soup with attribute channels from MeshChunk
+    slices (``wire::SoupChunkReader``, order checks and messages as
+    there): vertices, then faces (``face_sizes`` for polygons), then each
+    channel's rows and, per corner, its indices."""
+
+    def __init__(self) -> None:
+        self._vertices: List[np.ndarray] = []
+        self._vertex_count = 0
+        self._indices: List[np.ndarray] = []
+        self._sizes: List[np.ndarray] = []
+        self._face_count = 0
+        self._corner_count = 0
+        self._channels: Dict[str, Dict[str, Any]] = {}
+        self._last: Optional[str] = None
+
+    def add(self, chunk: Any, where: str) -> None:
+        """Adds one MeshChunk; raises :class:`AssemblyError` naming
+        ``where`` when it does not continue the soup."""
+        nv, ni = len(chunk.vertices), len(chunk.triangles)
+        if nv % 3 != 0:
+            raise AssemblyError(f"{where} has {nv} coordinates, not a "
+                                f"multiple of 3")
+        if (nv or ni) and self._channels:
+            raise AssemblyError(f"{where} sends "
+                                f"{'faces' if ni else 'vertices'} after "
+                                f"attributes")
+        if nv:
+            if self._face_count:
+                raise AssemblyError(f"{where} sends vertices after faces")
+            if chunk.first_vertex != self._vertex_count:
+                raise AssemblyError(
+                    f"{where} starts at vertex {chunk.first_vertex} but "
+                    f"{self._vertex_count} vertices have arrived")
+            self._vertices.append(_float_array(chunk.vertices).reshape(-1, 3))
+            self._vertex_count += nv // 3
+        if ni:
+            if chunk.first_triangle != self._face_count:
+                raise AssemblyError(
+                    f"{where} starts at face {chunk.first_triangle} but "
+                    f"{self._face_count} faces have arrived")
+            sizes = (_index_array(chunk.face_sizes) if len(chunk.face_sizes)
+                     else np.full(ni // 3, 3, dtype=np.int64))
+            if (sizes < 3).any() or sizes.sum() != ni:
+                raise AssemblyError(f"{where}: face_sizes do not add up to "
+                                    f"its {ni} face indices")
+            ids = _index_array(chunk.triangles)
+            if (ids >= self._vertex_count).any():
+                raise AssemblyError(
+                    f"face {self._face_count} has vertex index "
+                    f"{int(ids[ids >= self._vertex_count][0])}, but only "
+                    f"{self._vertex_count} vertices were sent")
+            self._indices.append(ids)
+            self._sizes.append(sizes)
+            self._face_count += len(sizes)
+            self._corner_count += ni
+        if chunk.HasField("attribute"):
+            self._add_attribute(chunk.attribute, where)
+
+    def _add_attribute(self, a: Any, where: str) -> None:
+        name = a.name
+        if not self._face_count:
+            raise AssemblyError(f"{where} sends attribute '{name}' before "
+                                f"any face")
+        if name != self._last:
+            if name in self._channels:
+                raise AssemblyError(f"{where}: attribute '{name}' is sent "
+                                    f"twice")
+            if not 1 <= a.dims <= 16:
+                raise AssemblyError(f"{where}: attribute '{name}' has "
+                                    f"{a.dims} values an entry")
+            self._channels[name] = {"dims": a.dims,
+                                    "per_corner": a.per_corner,
+                                    "values": [], "entries": 0,
+                                    "indices": [], "corners": 0}
+            self._last = name
+        ch = self._channels[name]
+        if a.dims != ch["dims"] or a.per_corner != ch["per_corner"]:
+            raise AssemblyError(f"{where}: attribute '{name}' changes its "
+                                f"dims or per_corner between slices")
+        if len(a.values):
+            if len(a.values) % ch["dims"] or a.first_value != ch["entries"] \
+                    or ch["corners"]:
+                raise AssemblyError(f"{where}: attribute '{name}' values do "
+                                    f"not continue at entry {ch['entries']}")
+            ch["values"].append(np.asarray(a.values, dtype=np.float32)
+                                .reshape(-1, ch["dims"]))
+            ch["entries"] += len(a.values) // ch["dims"]
+        if len(a.indices):
+            if not ch["per_corner"] or a.first_corner != ch["corners"]:
+                raise AssemblyError(f"{where}: attribute '{name}' indices do "
+                                    f"not continue at corner "
+                                    f"{ch['corners']}")
+            ch["indices"].append(_index_array(a.indices))
+            ch["corners"] += len(a.indices)
+
+    def finish(self, vertex_count: int) -> Tuple[
+            np.ndarray, Union[np.ndarray, List[np.ndarray]],
+            Dict[str, Tuple[bool, np.ndarray]]]:
+        """(vertices (V, 3), faces, channels): faces an int32 (F, 3) array
+        when every face is a triangle, else a list of int32 arrays;
+        channels {name: (per_corner, float32 rows)}, a row per vertex or,
+        per corner, per face corner in face order (indices resolved)."""
+        vertices = (np.concatenate(self._vertices) if self._vertices
+                    else np.zeros((0, 3)))
+        if len(vertices) != vertex_count:
+            raise AssemblyError(
+                f"{len(vertices)} vertices received, the report announced "
+                f"{vertex_count}")
+        ids = (np.concatenate(self._indices) if self._indices
+               else np.zeros(0, dtype=np.int64)).astype(np.int32)
+        sizes = (np.concatenate(self._sizes) if self._sizes
+                 else np.zeros(0, dtype=np.int64))
+        faces: Union[np.ndarray, List[np.ndarray]]
+        if (sizes == 3).all():
+            faces = ids.reshape(-1, 3)
+        else:
+            faces = np.split(ids, np.cumsum(sizes)[:-1])
+        channels: Dict[str, Tuple[bool, np.ndarray]] = {}
+        for name, ch in self._channels.items():
+            rows = (np.concatenate(ch["values"]) if ch["values"]
+                    else np.zeros((0, ch["dims"]), dtype=np.float32))
+            if not ch["per_corner"]:
+                if len(rows) != len(vertices):
+                    raise AssemblyError(
+                        f"attribute '{name}' has {len(rows)} entries for "
+                        f"{len(vertices)} vertices")
+                channels[name] = (False, rows)
+                continue
+            index = (np.concatenate(ch["indices"]) if ch["indices"]
+                     else np.zeros(0, dtype=np.int64))
+            if len(index) != self._corner_count:
+                raise AssemblyError(
+                    f"attribute '{name}' is per_corner but {len(index)} "
+                    f"indices arrived for {self._corner_count} face corners")
+            if len(index) and index.max() >= len(rows):
+                raise AssemblyError(f"attribute '{name}' names entry "
+                                    f"{int(index.max())}, outside "
+                                    f"0..{len(rows) - 1}")
+            channels[name] = (True, rows[index])
+        return vertices, faces, channels
+
+
 def assemble_triangulate(
         responses: Iterable[Any], points: np.ndarray,
         on_progress: Optional[Callable[[Progress], None]] = None) -> Result:
@@ -212,8 +355,26 @@ class PatchReader:
             self._patches.append({"hole": m.hole,
                                   "first_vertex": m.first_vertex,
                                   "vertices": [], "faces": [],
-                                  "replaced": []})
+                                  "replaced": [],
+                                  "channels": [(c.name, c.dims, [], [])
+                                               for c in m.attributes]})
         p = self._patches[-1]
+        # Each message gives every channel's values for its own corners.
+        replacing = sum(len(r.triangles) // 3 for r in m.replaced_faces)
+        if len(m.attributes) != len(p["channels"]):
+            raise AssemblyError(
+                f"a patch message of hole {m.hole} has {len(m.attributes)} "
+                f"attribute channels, not {len(p['channels'])}")
+        for c, (name, dims, on_faces, on_replaced) in zip(m.attributes,
+                                                          p["channels"]):
+            if c.name != name or c.dims != dims or dims == 0 or \
+                    len(c.faces) != dims * len(m.faces) or \
+                    len(c.replaced) != 3 * dims * replacing:
+                raise AssemblyError(
+                    f"a patch message of hole {m.hole}: attribute "
+                    f"'{c.name}' does not match the message's corners")
+            on_faces.append(np.asarray(c.faces, dtype=np.float32))
+            on_replaced.append(np.asarray(c.replaced, dtype=np.float32))
         self._next += len(m.vertices) // 3
         for ids in [m.faces] + [r.triangles for r in m.replaced_faces]:
             if len(ids) and max(ids) >= self._next:
@@ -242,13 +403,23 @@ class PatchReader:
 
         out = []
         for p in self._patches:
+            corner_data, replaced_data = {}, {}
+            for name, dims, on_faces, on_replaced in p["channels"]:
+                corner_data[name] = np.concatenate(on_faces).reshape(-1, dims)
+                rows = np.concatenate(on_replaced).reshape(-1, dims)
+                at = 0
+                for face, t in p["replaced"]:
+                    replaced_data.setdefault(int(face), {})[name] = \
+                        rows[at:at + 3 * len(t)]
+                    at += 3 * len(t)
             out.append(HolePatch(
                 hole=p["hole"], first_vertex=p["first_vertex"],
                 vertices=(np.concatenate(p["vertices"]) if p["vertices"]
                           else np.zeros((0, 3))),
                 faces=ids(p["faces"]),
                 replaced_faces={int(face): ids([t])
-                                for face, t in p["replaced"]}))
+                                for face, t in p["replaced"]},
+                corner_data=corner_data, replaced_corner_data=replaced_data))
         return out
 
 
@@ -257,12 +428,16 @@ def _read_fill(responses: Iterable[Any],
                answer: str,
                sent_vertices: Optional[int] = None
                ) -> Tuple[Any, Any, Optional[grpc.RpcError]]:
+    # answer "soup": the mesh as SoupAssembler reads it (polygons or
+    # attribute channels kept).
     """FillRemote's loop over a FillHoles response stream: the report
     message, the mesh (``answer`` "mesh": vertices, faces) or the
     patches, and the error the stream ended with when the fill stopped
     early but answered whole (a report with ``stopped`` holes), else None;
     raises :class:`DotError` (``INTERNAL``) with dotctl's messages."""
     assembler = MeshAssembler()
+    soup = SoupAssembler()
+    chunks = 0
     patches = PatchReader(sent_vertices)
     report = None
     assembled: Optional[str] = None
@@ -286,9 +461,13 @@ def _read_fill(responses: Iterable[Any],
         elif kind == "mesh":
             if assembled is None:
                 try:
-                    assembler.add(message.mesh)
+                    if answer == "soup":
+                        soup.add(message.mesh, f"mesh chunk {chunks}")
+                    else:
+                        assembler.add(message.mesh)
                 except AssemblyError as e:
                     assembled = str(e)
+                chunks += 1
         elif kind == "patch":
             if assembled is None:
                 try:
@@ -301,7 +480,12 @@ def _read_fill(responses: Iterable[Any],
         raise DotError(grpc.StatusCode.INTERNAL,
                        "the server ended the stream without a report")
     out: Any = None
-    if assembled is None and answer == "mesh":
+    if assembled is None and answer == "soup":
+        try:
+            out = soup.finish(report.input_vertices + report.added_vertices)
+        except AssemblyError as e:
+            assembled = str(e)
+    elif assembled is None and answer == "mesh":
         try:
             out = assembler.finish(
                 report.input_vertices + report.added_vertices,
@@ -326,18 +510,34 @@ def _raise_stopped(stopped: Optional[grpc.RpcError], result: Any) -> None:
 
 def assemble_fill(
         responses: Iterable[Any],
-        on_progress: Optional[Callable[[FillProgress], None]] = None
+        on_progress: Optional[Callable[[FillProgress], None]] = None,
+        as_sent: bool = False, per_corner: Sequence[str] = ()
 ) -> FillResult:
     """The FillResult of a FillHoles response stream (answer
     ``FILL_ANSWER_MESH``) that ended OK; raises :class:`FillStopped`
     with it when the fill stopped early but answered what it had.
+    ``as_sent``: the request kept polygons or sent attribute channels, so
+    the mesh comes as :class:`SoupAssembler` reads it; the channels go in
+    the result's ``point_data`` and ``corner_data`` as they came, except
+    the ``per_corner`` ones (sent per corner), which stay per corner.
 
     Raises :class:`DotError` (``INTERNAL``) when the report is missing or
     the mesh does not add up, with dotctl's messages.
     """
-    report, mesh, stopped = _read_fill(responses, on_progress, "mesh")
+    report, mesh, stopped = _read_fill(responses, on_progress,
+                                       "soup" if as_sent else "mesh")
     result = FillResult(vertices=mesh[0], faces=mesh[1],
                         report=FillReport.from_proto(report))
+    if as_sent:
+        corner_ids = (mesh[1].reshape(-1) if isinstance(mesh[1], np.ndarray)
+                      else np.concatenate(mesh[1]))
+        for name, (corner, rows) in mesh[2].items():
+            if corner:
+                result.corner_data[name] = rows
+            elif name in per_corner:
+                result.corner_data[name] = rows[corner_ids]
+            else:
+                result.point_data[name] = rows
     _raise_stopped(stopped, result)
     return result
 
@@ -365,7 +565,9 @@ FaceInput = Union[np.ndarray, Sequence[Sequence[int]]]
 
 def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
                   faces: Union[np.ndarray, List[np.ndarray]],
-                  max_bytes: int = REQUEST_BYTES) -> Iterator[Any]:
+                  max_bytes: int = REQUEST_BYTES,
+                  channels: Sequence[Tuple[str, bool, np.ndarray]] = ()
+                  ) -> Iterator[Any]:
     """The FillHolesRequest stream of a mesh, made lazily, message by
     message (the upload never holds a second copy of the mesh).
 
@@ -378,7 +580,10 @@ def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
     it (and its ``first_vertex`` the vertex count). The first message
     carries id and options with the first slice. ``face_sizes`` is sent
     only when some face is not a triangle. ``faces`` is an int array
-    (F, k) or a list of int arrays (polygons).
+    (F, k) or a list of int arrays (polygons). Then each of ``channels``
+    ((name, per_corner, float32 (n, d) rows)) in ``attribute`` slices of
+    at most ``max_bytes`` // 5 floats: its rows, then, per corner, an
+    index per corner (row c for corner c).
     """
     vertices_per = max(1, max_bytes // 24)
     indices_per = max(3, max_bytes // 5)
@@ -428,6 +633,34 @@ def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
             in_message += len(face)
         if m is not None:
             yield m
+    faces_sent = len(faces)
+    for name, per_corner, rows in channels:
+        dims = rows.shape[1]
+        per = max(1, (max_bytes // 5) // dims)
+
+        def slice_of() -> Any:
+            m = message()
+            m.mesh.first_vertex = n
+            m.mesh.first_triangle = faces_sent
+            a = m.mesh.attribute
+            a.name, a.dims, a.per_corner = name, dims, per_corner
+            return m
+
+        for start in range(0, max(1, len(rows)), per):
+            m = slice_of()
+            m.mesh.attribute.first_value = start
+            m.mesh.attribute.values.extend(
+                rows[start:start + per].reshape(-1).tolist())
+            yield m
+        if per_corner:
+            per = max(1, max_bytes // 5)
+            for start in range(0, len(rows), per):
+                m = slice_of()
+                m.mesh.attribute.first_value = len(rows)
+                m.mesh.attribute.first_corner = start
+                m.mesh.attribute.indices.extend(
+                    range(start, min(len(rows), start + per)))
+                yield m
     if pending is not None:
         yield pending  # an empty mesh: id and options alone
 
