@@ -258,6 +258,54 @@ def test_fill_holes_object_mode():
     assert f1 > f0
 
 
+def test_fill_holes_gives_new_faces_uvs_and_colours():
+    """New faces take their UVs and colours from their neighbours (blended
+    from the hole's rim by the server): no face collapses to a point in UV
+    space, and a colour that follows the position keeps following it."""
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16)
+    sphere = bpy.context.active_object
+    mesh = sphere.data
+    colour = mesh.color_attributes.new("Col", 'FLOAT_COLOR', 'CORNER')
+    for loop in mesh.loops:
+        co = mesh.vertices[loop.vertex_index].co
+        colour.data[loop.index].color = (0.5 + 0.5 * co.x, 0.5 + 0.5 * co.y,
+                                         0.5 + 0.5 * co.z, 1.0)
+    # A hole away from the UV map's seam and poles.
+    removed = delete_faces(sphere, lambda c: c.y < -0.7 and abs(c.z) < 0.35)
+    assert removed > 0
+    before = {f.index for f in sphere.data.polygons}
+    assert bpy.ops.mesh.dot_fill_holes() == {'FINISHED'}
+    check_mesh(sphere, boundary_edges=0)
+    bm = object_bmesh(sphere)
+    try:
+        uv = bm.loops.layers.uv.active
+        col = bm.loops.layers.float_color["Col"]
+        rim = [l[uv].uv.copy() for e in bm.edges for f in e.link_faces
+               for l in f.loops if f.index in before]
+        new = [f for f in bm.faces if f.calc_center_median().y < -0.6 and
+               abs(f.calc_center_median().z) < 0.35 and len(f.verts) == 3]
+        assert len(new) > 10, len(new)
+        lo = [min(p[k] for p in rim) for k in (0, 1)]
+        hi = [max(p[k] for p in rim) for k in (0, 1)]
+        flat = 0
+        for f in new:
+            a, b, c = (l[uv].uv for l in f.loops)
+            area = abs((b - a).cross(c - a)) / 2
+            flat += area < 1e-7
+            for p in (a, b, c):
+                assert lo[0] - 1e-5 <= p.x <= hi[0] + 1e-5 and \
+                    lo[1] - 1e-5 <= p.y <= hi[1] + 1e-5, (p, lo, hi)
+            for l in f.loops:
+                want = [0.5 + 0.5 * x for x in l.vert.co]
+                got = l[col][:3]
+                assert max(abs(g - w) for g, w in zip(got, want)) < 0.1, \
+                    (got, want)
+        assert flat == 0, f"{flat} of {len(new)} new faces are flat in UV"
+    finally:
+        bm.free()
+
+
 def test_fill_holes_merges_split_vertices_first():
     """A mesh imported with split vertices (OBJ/STL exporters write seams
     twice): before, the add-on sent it as it was and holes through a seam

@@ -87,6 +87,59 @@ def triangles(bm):
     return faces, owner
 
 
+def _layers(bm):
+    """The layers a fill carries into its new faces, as (channel name,
+    layer, on_vertex, dims): UV maps and colour attributes, on face corners
+    or on vertices (Blender 3.x bmesh names). Layers are listed by
+    items(): iterating a layer collection fails on Blender 3.4's Python
+    3.11 (SystemError)."""
+    out = [("uv:" + name, l, False, 2)
+           for name, l in bm.loops.layers.uv.items()]
+    for kind in ("color", "float_color"):
+        for on_vertex, layers in ((False, bm.loops.layers),
+                                  (True, bm.verts.layers)):
+            if hasattr(layers, kind):
+                out += [(f"color:{name}", l, on_vertex, 4)
+                        for name, l in getattr(layers, kind).items()]
+    return out
+
+
+def _get(loop, layer, on_vertex, dims):
+    data = loop.vert[layer] if on_vertex else loop[layer]
+    return data.uv[:] if dims == 2 else data[:]
+
+
+def corner_data(bm):
+    """Each UV map and colour attribute at the corners of the triangles
+    `triangles(bm)` gives, in its order: {channel name: float32 (3T, d)},
+    for FillHoles' corner_data (so that new faces get values blended from
+    their neighbours', seams kept)."""
+    tris = bm.calc_loop_triangles()
+    out = {}
+    for name, layer, on_vertex, dims in _layers(bm):
+        out[name] = np.array([_get(l, layer, on_vertex, dims)
+                              for t in tris for l in t],
+                             dtype=np.float32).reshape(-1, dims)
+    return out
+
+
+def _set_corners(bm, face, values, new_verts):
+    """Sets `face`'s loops (in the order it was made) to `values` ({channel
+    name: (3, d) rows}); a vertex layer is set on `new_verts` only."""
+    for name, layer, on_vertex, dims in _layers(bm):
+        rows = values.get(name)
+        if rows is None:
+            continue
+        for loop, row in zip(face.loops, rows):
+            if on_vertex:
+                if loop.vert in new_verts:
+                    loop.vert[layer] = row
+            elif dims == 2:
+                loop[layer].uv = row
+            else:
+                loop[layer] = row
+
+
 def check_unchanged(bm, vertex_count, face_count):
     if len(bm.verts) != vertex_count or len(bm.faces) != face_count:
         raise MeshChanged("the mesh changed while DOT was working; run the "
@@ -190,7 +243,7 @@ def patches_of_loops(patches, loops, vertex_count):
     return kept, others
 
 
-def add_patches(bm, patches, vertex_count, faces, owner):
+def add_patches(bm, patches, vertex_count, faces, owner, corners=None):
     """Adds the patches of a FillHoles answer (dot_client.HolePatch) to bm.
 
     The answer is in the ids of what was sent, `faces, owner =
@@ -200,7 +253,10 @@ def add_patches(bm, patches, vertex_count, faces, owner):
     unused), and a replaced face is a triangle of `faces`. Each bm face
     with a replaced triangle is rebuilt from its loop triangles, the
     replaced ones swapped for their replacements (the edges it no longer
-    uses go with it). Returns (new faces, stats)."""
+    uses go with it). `corners`: the corner_data(bm) that was sent, whose
+    channels the patches carry: every new face's UVs and colours are set
+    from them (a rebuilt face's untouched triangles keep what they had).
+    Returns (new faces, stats)."""
     # Checked before bm changes: a patch that does not fit is refused whole.
     new_ids = {p.first_vertex + k for p in patches
                for k in range(len(p.vertices))}
@@ -228,20 +284,33 @@ def add_patches(bm, patches, vertex_count, faces, owner):
         i = int(i)
         return existing[i] if i < vertex_count else new_verts[i]
 
+    corners = corners or {}
+    replaced_values = {t: p.replaced_corner_data.get(t, {})
+                       for p in patches for t in p.replaced_faces}
+
+    def rows(data, k):  # {name: (3, d)} of triangle k of data's
+        return {name: a[3 * k:3 * k + 3] for name, a in data.items()}
+
     rebuilt = {int(owner[t]) for t in replaced}
-    make = []  # (vertex ids, the face to copy attributes from)
+    # (vertex ids, the face to copy attributes from, corner values)
+    make = []
     old_faces = {f: bm.faces[f] for f in rebuilt}
     for t, f in enumerate(owner):
         f = int(f)
-        if f in rebuilt:
-            for tri in replaced.get(t, faces[t:t + 1]):
-                make.append((tri, old_faces[f]))
+        if f not in rebuilt:
+            continue
+        if t in replaced:
+            for k, tri in enumerate(replaced[t]):
+                make.append((tri, old_faces[f], rows(replaced_values[t], k)))
+        else:
+            make.append((faces[t], old_faces[f], rows(corners, t)))
     for p in patches:
-        for tri in p.faces:
-            make.append((tri, None))
+        for k, tri in enumerate(p.faces):
+            make.append((tri, None, rows(p.corner_data, k)))
     stats = {}
     new_faces = []
-    for tri, example in make:
+    added = set(new_verts.values())
+    for tri, example, values in make:
         vs = [vert(i) for i in tri]
         if example is None:
             example = _example_face([v for v, i in zip(vs, tri)
@@ -249,6 +318,8 @@ def add_patches(bm, patches, vertex_count, faces, owner):
         f = _new_face(bm, vs, example, stats)
         if f is not None:
             new_faces.append(f)
+            if values:
+                _set_corners(bm, f, values, added)
     old = list(old_faces.values())
     if old:
         old_edges = {e for f in old for e in f.edges}

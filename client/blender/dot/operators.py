@@ -267,13 +267,15 @@ def _triangulate_work(loops, normals, options):
     return work
 
 
-def _fill_work(vertices, faces, options):
-    """FillHoles on the mesh as triangles, answered with patches
-    (dot_client.FillPatches) in the ids sent."""
+def _fill_work(vertices, faces, options, corners=None):
+    """FillHoles on the mesh as triangles with their UVs and colours
+    (geometry.corner_data), answered with patches (dot_client.FillPatches)
+    in the ids sent."""
     def work(client, cancel, progress):
         progress(0.0, "sending the mesh")
         return client.fill_patches(
             vertices, faces, options=options, cancel=cancel,
+            corner_data=corners,
             progress=lambda p: progress(
                 p.holes_done / max(1, p.holes_total), fill_status(p)))
     return work
@@ -406,12 +408,14 @@ class MESH_OT_dot_fill_loops(LoopsOperator, bpy.types.Operator):
             return None
         vertices = geometry.vertex_array(bm)
         faces, owner = geometry.triangles(bm)
+        corners = geometry.corner_data(bm)
         options = dot_client.FillOptions(
             stage=self.stage.lower(), weights=self.weights("fill"),
             loops_through=geometry.loop_names(bm, loops), no_repair=True)
         state = {"loops": loops, "faces": faces, "owner": owner,
+                 "corners": corners,
                  "counts": (len(bm.verts), len(bm.faces))}
-        return _fill_work(vertices, faces, options), state
+        return _fill_work(vertices, faces, options, corners), state
 
     def finish(self, context, state, answer):
         obj, bm = _edit_bmesh(context)
@@ -427,7 +431,8 @@ class MESH_OT_dot_fill_loops(LoopsOperator, bpy.types.Operator):
             return report_filled(self, 0, len(state["loops"]), problems, {})
         self.select_only_new(bm)
         _, stats = geometry.add_patches(bm, patches, vertex_count,
-                                        state["faces"], state["owner"])
+                                        state["faces"], state["owner"],
+                                        state["corners"])
         holes = {p.hole for p in patches}
         stats["inserted"] = sum(h.boundary_inserted
                                 for h in answer.report.holes if h.id in holes)
@@ -564,7 +569,8 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
                 return None
             vertices = geometry.vertex_array(bm)
             faces, owner = geometry.triangles(bm)
-            state = {"faces": faces, "owner": owner,
+            corners = geometry.corner_data(bm)
+            state = {"faces": faces, "owner": owner, "corners": corners,
                      "counts": (len(bm.verts), len(bm.faces)),
                      "merged": merged}
         finally:
@@ -575,7 +581,7 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
             max_hole_edges=self.max_hole_edges,
             max_hole_diameter=self.max_hole_diameter,
             skip_longest=self.skip_longest, no_repair=True)
-        return _fill_work(vertices, faces, options), state
+        return _fill_work(vertices, faces, options, corners), state
 
     def finish(self, context, state, result):
         obj, bm, edit = self._bmesh(context)
@@ -585,7 +591,8 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
                 for f in bm.faces:
                     f.select_set(False)
             geometry.add_patches(bm, result.patches, state["counts"][0],
-                                 state["faces"], state["owner"])
+                                 state["faces"], state["owner"],
+                                 state["corners"])
             bm.normal_update()
             if edit:
                 bm.select_flush_mode()
