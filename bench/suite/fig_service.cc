@@ -4,12 +4,9 @@
 // polygons at several concurrencies. Requests skip the server's cache
 // (--no-cache) so both sides do the same work. Server and client share the
 // machine's cores, as they would on one node.
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,45 +21,13 @@
 
 #include "measure.h"
 #include "plot.h"
+#include "process.h"
 #include "suite.h"
 
 extern char** environ;
 
 namespace dot::bench {
 namespace {
-
-int FreeLoopbackPort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof addr;
-  int port = 0;
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0) {
-    port = ntohs(addr.sin_port);
-  }
-  ::close(fd);
-  return port;
-}
-
-std::string Run(const std::string& command) {
-  std::string out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buf[4096];
-  size_t got;
-  while ((got = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, got);
-  ::pclose(pipe);
-  return out;
-}
-
-double JsonNumber(const std::string& json, const std::string& key) {
-  const size_t at = json.find("\"" + key + "\":");
-  return at == std::string::npos
-             ? NAN
-             : std::strtod(json.c_str() + at + key.size() + 3, nullptr);
-}
 
 struct LoadResult {
   double rps = NAN, p50 = NAN, p99 = NAN;
@@ -107,10 +72,10 @@ LoadResult Load(const std::string& dotctl, const std::string& global,
     const double cpu0 =
         server > 0 ? ProcessCpuSeconds(server) : ChildrenCpuSeconds();
     const std::string json =
-        Run(dotctl + " " + global + " load " + mode +
-            " --json --no-cache --curve monkey -n " + std::to_string(n) +
-            " -c " + std::to_string(concurrency) + " -r " +
-            std::to_string(requests) + " -d 60");
+        RunCapture(dotctl + " " + global + " load " + mode +
+                   " --json --no-cache --curve monkey -n " + std::to_string(n) +
+                   " -c " + std::to_string(concurrency) + " -r " +
+                   std::to_string(requests) + " -d 60");
     const double cpu1 =
         server > 0 ? ProcessCpuSeconds(server) : ChildrenCpuSeconds();
     cpu.push_back((cpu1 - cpu0) * 1000 / requests);

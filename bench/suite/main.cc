@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   config.mesh_dir = DOT_MESH_DIR;
   config.server_path = DOT_SERVER_PATH;
   config.dotctl_path = DOT_DOTCTL_PATH;
+  config.cgal_fill_path = DOT_CGAL_FILL_PATH;
   std::vector<std::string> only;
   CLI::App app(
       "dot-bench: the paper's figures, the CGAL peer and the "
@@ -41,10 +42,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--mesh-dir", config.mesh_dir, "libcgal-demo data/meshes")
       ->capture_default_str();
-  app.add_option("--only", only,
-                 "run only these: curves, holes, gk, optimality, service, fill")
+  app.add_option(
+         "--only", only,
+         "run only these: curves, holes, gk, optimality, service, fill, "
+         "scan")
       ->check(CLI::IsMember(
-          {"curves", "holes", "gk", "optimality", "service", "fill"}));
+          {"curves", "holes", "gk", "optimality", "service", "fill", "scan"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
   if (wanted("optimality")) dot::bench::RunOptimality(config, body);
   if (wanted("service")) dot::bench::RunService(config, body);
   if (wanted("fill")) invalid += dot::bench::RunFill(config, body);
+  if (wanted("scan")) invalid += dot::bench::RunScan(config, body);
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count() /

@@ -17,6 +17,7 @@ struct Config {
   std::string out_dir = "bench-results";
   std::string mesh_dir;                  // libcgal-demo's data/meshes
   std::string server_path, dotctl_path;  // for the service figure
+  std::string cgal_fill_path;            // CGAL's whole-process peer
   bool quick = false;                    // small sizes: a smoke run
   int reps = 5;                          // runs per point (medians)
   double long_run_s = 2;  // runs longer than this are repeated 3 times only
@@ -38,6 +39,9 @@ int RunHoles(const Config& config, std::ostream& report);
 void RunGk(const Config& config, std::ostream& report);
 void RunOptimality(const Config& config, std::ostream& report);
 void RunService(const Config& config, std::ostream& report);
+// Whole processes on scan-size meshes; returns the runs that failed or
+// left a hole open.
+int RunScan(const Config& config, std::ostream& report);
 
 // Formatting shared by the figures.
 std::string Fixed(double v, int digits = 1);  // "-" for NaN
