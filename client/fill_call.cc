@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "fill_call.h"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 #include <utility>
@@ -69,6 +70,12 @@ FillOutcome FillLocal(const std::string&, const v1::FillOptions& wire_options,
     for (const std::string& note : out.notes) out.report.add_notes(note);
     if (answer == v1::FILL_ANSWER_PATCHES) {
       out.patches = PatchesAsSent(r, sent_vertices);
+      if (static_cast<int>(out.patches.size()) != r.fill.report.filled) {
+        out.status = grpc::Status(grpc::StatusCode::INTERNAL,
+                                  "the filled mesh is not laid out as its "
+                                  "patches need");
+        out.partial = false;
+      }
     } else if (!r.soup.faces.empty()) {
       out.soup = std::move(r.soup);
       out.as_sent = true;
@@ -151,7 +158,29 @@ FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
                                   " vertices received, the report announced " +
                                   std::to_string(vertices));
     }
-    // A server that could not carry a channel drops it and says so.
+    // Polygons kept make fewer faces than the report's triangles.
+    if (assembled.ok() && !options.keep_polygons() &&
+        out.soup.faces.size() != faces) {
+      assembled = InvalidArgument(std::to_string(out.soup.faces.size()) +
+                                  " faces received, the report announced " +
+                                  std::to_string(faces));
+    }
+    // A server that could not carry a channel says so in a note; one from
+    // before attributes on the wire ignores them.
+    for (const AttributeChannel& sent : mesh.attributes) {
+      const bool answered = std::any_of(
+          out.soup.attributes.begin(), out.soup.attributes.end(),
+          [&](const AttributeChannel& a) { return a.name == sent.name; });
+      const bool noted = std::any_of(
+          out.notes.begin(), out.notes.end(), [&](const std::string& n) {
+            return n.find("'" + sent.name + "'") != std::string::npos;
+          });
+      if (assembled.ok() && !answered && !noted) {
+        out.notes.push_back("attribute '" + sent.name +
+                            "' was not answered: the server predates "
+                            "attributes on the wire (--local carries it)");
+      }
+    }
     out.as_sent = assembled.ok();
   } else if (assembled.ok() && options.answer() == v1::FILL_ANSWER_MESH &&
              !options.dry_run()) {  // a dry run's answer is the report alone

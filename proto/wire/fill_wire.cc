@@ -330,7 +330,8 @@ Status PatchReader::Add(const v1::HolePatch& m) {
     replacing += static_cast<size_t>(r.triangles_size()) / 3;
   if (!continues) {
     for (const v1::CornerValues& c : m.attributes()) {
-      p->attributes.push_back({c.name(), static_cast<int>(c.dims()), {}, {}});
+      const auto dims = static_cast<int>(std::min<uint32_t>(c.dims(), 17));
+      p->attributes.push_back({c.name(), dims, {}, {}});
     }
   }
   if (static_cast<size_t>(m.attributes_size()) != p->attributes.size()) {
@@ -344,7 +345,7 @@ Status PatchReader::Add(const v1::HolePatch& m) {
     PatchChannel& to = p->attributes[static_cast<size_t>(i)];
     const size_t dims = c.dims();
     if (c.name() != to.name || c.dims() != static_cast<uint32_t>(to.dims) ||
-        dims == 0 ||
+        dims == 0 || dims > 16 ||
         static_cast<size_t>(c.faces_size()) !=
             dims * static_cast<size_t>(m.faces_size()) ||
         static_cast<size_t>(c.replaced_size()) != 3 * dims * replacing) {

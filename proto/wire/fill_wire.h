@@ -119,6 +119,8 @@ class FillRequestReader {
   size_t vertices() const { return chunks_.vertices(); }
   size_t faces() const { return chunks_.faces(); }
   int64_t attribute_bytes() const { return chunks_.attribute_bytes(); }
+  size_t channels() const { return chunks_.channels(); }
+  size_t corners() const { return chunks_.corners(); }
   size_t messages() const { return messages_; }
 
  private:

@@ -213,6 +213,12 @@ Status SoupChunkReader::AddAttribute(const v1::AttributeChunk& a,
     per_corner_.push_back(a.per_corner());
   }
   AttributeChannel& ch = soup_.attributes.back();
+  if (!starts && a.first_value() == 0 && !a.values().empty() &&
+      ch.entries() > 0) {
+    return InvalidArgument(where + ": " + name +
+                           " is sent twice (a channel's slices come "
+                           "one after another)");
+  }
   if (a.dims() != static_cast<uint32_t>(ch.dims) ||
       a.per_corner() != per_corner_.back()) {
     return InvalidArgument(where + ": " + name +

@@ -49,6 +49,8 @@ class SoupChunkReader {
   size_t vertices() const { return soup_.vertices.size(); }
   size_t faces() const { return soup_.faces.size(); }
   int64_t attribute_bytes() const { return attribute_bytes_; }
+  size_t channels() const { return soup_.attributes.size(); }
+  size_t corners() const { return corners_; }
 
  private:
   Status AddAttribute(const v1::AttributeChunk& a, const std::string& where);

@@ -25,6 +25,13 @@ Status FillHolesCall::Run(PolygonSoup soup, const Control& control,
   } else if ((result_.fill.status.ok() || result_.fill.partial) &&
              answer_ == v1::FILL_ANSWER_PATCHES) {
     patches_ = PatchesAsSent(result_, sent_vertices);
+    if (static_cast<int>(patches_.size()) != result_.fill.report.filled) {
+      result_.fill.status = MakeStatus(
+          StatusCode::kInternal,
+          "the filled mesh is not laid out as its patches need; ask for the "
+          "whole mesh (FILL_ANSWER_MESH)");
+      result_.fill.partial = false;
+    }
     result_.fill.mesh = {};  // the patches are the answer
     result_.soup = {};
   }

@@ -25,12 +25,14 @@ grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
   }
   const Status s = reader_.Add(m);
   if (!s.ok()) return wire::ToGrpcStatus(s);
-  // Attribute channels are held about three times: as sent, traced
-  // through the repair, and in the answer.
+  // Attribute channels are held about three times as sent (upload,
+  // trace, answer), and each costs about 40 bytes a triangle corner in the
+  // fill's own tables (entries traced through the repair and the merge).
   const int64_t bytes =
       FillMemoryBytes(static_cast<int64_t>(reader_.vertices()),
                       static_cast<int64_t>(reader_.faces())) +
-      3 * reader_.attribute_bytes();
+      3 * reader_.attribute_bytes() +
+      40 * static_cast<int64_t>(reader_.channels() * reader_.corners());
   const int64_t budget = runner_->options().fill_memory_bytes;
   if (bytes > budget) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,

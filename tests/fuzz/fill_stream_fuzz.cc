@@ -14,8 +14,10 @@
 // status with a message and never gRPC OK; an OK fill has only finite
 // vertices, keeps the repaired input's vertices first and unchanged, has
 // faces over existing, distinct vertices, counts that add up, and a mesh
-// reported closed has every edge on exactly two faces; its patches in the
-// ids as sent (PatchesAsSent, the patches answer) agree with the mesh.
+// reported closed has every edge on exactly two faces; attribute channels
+// come back well formed and finite, with an entry for every corner; its
+// patches in the ids as sent (PatchesAsSent, the patches answer) agree
+// with the mesh and carry every channel at every corner.
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -90,7 +92,8 @@ void CheckFill(const dot::MeshData& input, const dot::FillResult& r) {
 // The patches answer (FILL_ANSWER_PATCHES) of an OK fill: one per filled
 // hole, new vertices numbered on from the soup's and equal to the fill's,
 // faces over ids that exist, each replaced face a face of the soup.
-void CheckPatches(const dot::PolygonSoup& soup, const dot::SoupFillResult& r) {
+void CheckPatches(const dot::PolygonSoup& soup, const dot::SoupFillResult& r,
+                  const std::vector<dot::Vec3>& filled) {
   const auto sent = static_cast<int64_t>(soup.vertices.size());
   const auto patches = dot::PatchesAsSent(r, sent);
   if (static_cast<int32_t>(patches.size()) != r.fill.report.filled) {
@@ -101,8 +104,7 @@ void CheckPatches(const dot::PolygonSoup& soup, const dot::SoupFillResult& r) {
     if (p.first_vertex != next) Fail("patch vertices are not numbered on");
     for (size_t k = 0; k < p.new_vertices.size(); ++k) {
       const dot::Vec3& a = p.new_vertices[k];
-      const dot::Vec3& b =
-          r.fill.mesh.vertices[r.input_vertices + (next - sent) + k];
+      const dot::Vec3& b = filled[r.input_vertices + (next - sent) + k];
       if (!(a == b)) Fail("a patch vertex is not the fill's");
     }
     next += static_cast<int64_t>(p.new_vertices.size());
@@ -112,6 +114,17 @@ void CheckPatches(const dot::PolygonSoup& soup, const dot::SoupFillResult& r) {
       }
     };
     for (const dot::Triangle& t : p.faces) check(t);
+    size_t pieces = 0;
+    for (const auto& t : p.replacements) pieces += t.size();
+    if (p.attributes.size() != r.soup.attributes.size()) {
+      Fail("a patch does not carry every channel");
+    }
+    for (const dot::PatchChannel& c : p.attributes) {
+      if (c.faces.size() != 3 * c.dims * p.faces.size() ||
+          c.replaced.size() != 3 * c.dims * pieces) {
+        Fail("a patch channel misses corners");
+      }
+    }
     for (size_t k = 0; k < p.replaced_faces.size(); ++k) {
       if (p.replaced_faces[k] < 0 ||
           p.replaced_faces[k] >= static_cast<int32_t>(soup.faces.size())) {
@@ -182,7 +195,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       r.input_faces != static_cast<int64_t>(mesh.triangles.size())) {
     Fail("FillSoup's input counts are not the repaired mesh's");
   }
-  CheckFill(mesh, r.fill);
-  CheckPatches(soup, r);
+  // With channels (or polygons kept) the answer is the soup: its faces
+  // as fans are what the mesh promise holds for.
+  dot::FillResult answer = r.fill;
+  if (!r.soup.faces.empty()) {
+    if (!dot::CheckAttributes(r.soup).ok()) Fail("answered channels are bad");
+    answer.mesh.vertices = r.soup.vertices;
+    for (dot::FaceView f : r.soup.faces) {
+      for (size_t k = 1; k + 1 < f.size(); ++k)
+        answer.mesh.triangles.push_back({f[0], f[k], f[k + 1]});
+    }
+  }
+  CheckFill(mesh, answer);
+  // The patches answer is made only without keep_polygons (the server asks
+  // for polygons with the mesh answer alone).
+  if (!options.keep_polygons) CheckPatches(soup, r, answer.mesh.vertices);
   return 0;
 }

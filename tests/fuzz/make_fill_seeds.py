@@ -87,6 +87,27 @@ def main():
     stream = messages(fair, v, f, slices=2)
     stream.insert(2, b"\xff\xff\xff")  # does not parse: refused by position
     write("bad_middle", stream)
+    # Channels: a colour per vertex, a UV per corner (a seam at i = 3),
+    # polygons kept.
+    for name, options in (("attributes_kept_polygons",
+                           pb.FillOptions(keep_polygons=True,
+                                          skip_longest=True)),
+                          ("attributes_patches",
+                           pb.FillOptions(answer=pb.FILL_ANSWER_PATCHES,
+                                          skip_longest=True))):
+        stream = messages(options, v, f)
+        colour = pb.FillHolesRequest()
+        colour.mesh.attribute.name, colour.mesh.attribute.dims = "color", 3
+        for c in v[0::3]:
+            colour.mesh.attribute.values.extend([0.5, c / 6, 0.25])
+        uv = pb.FillHolesRequest()
+        a = uv.mesh.attribute
+        a.name, a.dims, a.per_corner = "uv", 2, True
+        for k, corner in enumerate(f):
+            x, y = v[3 * corner], v[3 * corner + 1]
+            a.values.extend([x / 6 + (v[3 * f[k - k % 3]] >= 3), y / 6])
+        a.indices.extend(range(len(f)))
+        write(name, stream + [colour, uv])
 
 
 if __name__ == "__main__":

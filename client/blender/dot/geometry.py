@@ -87,21 +87,27 @@ def triangles(bm):
     return faces, owner
 
 
+# The most channels a FillHoles call carries.
+MAX_LAYERS = 16
+
+
 def _layers(bm):
     """The layers a fill carries into its new faces, as (channel name,
     layer, on_vertex, dims): UV maps and colour attributes, on face corners
-    or on vertices (Blender 3.x bmesh names). Layers are listed by
-    items(): iterating a layer collection fails on Blender 3.4's Python
-    3.11 (SystemError)."""
-    out = [("uv:" + name, l, False, 2)
-           for name, l in bm.loops.layers.uv.items()]
+    or on vertices (Blender 3.x bmesh names), the first MAX_LAYERS of them.
+    Channels are named by position ("uv0", "color1"): a Blender name may be
+    longer than the wire allows. Layers are listed by items(): iterating a
+    layer collection fails on Blender 3.4's Python 3.11 (SystemError)."""
+    found = [("uv", l, False, 2) for _, l in bm.loops.layers.uv.items()]
     for kind in ("color", "float_color"):
         for on_vertex, layers in ((False, bm.loops.layers),
                                   (True, bm.verts.layers)):
             if hasattr(layers, kind):
-                out += [(f"color:{name}", l, on_vertex, 4)
-                        for name, l in getattr(layers, kind).items()]
-    return out
+                found += [("color", l, on_vertex, 4)
+                          for _, l in getattr(layers, kind).items()]
+    return [(f"{what}{i}", l, on_vertex, dims)
+            for i, (what, l, on_vertex, dims) in
+            enumerate(found[:MAX_LAYERS])]
 
 
 def _get(loop, layer, on_vertex, dims):

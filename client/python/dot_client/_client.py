@@ -606,7 +606,8 @@ class Client:
             per_corner = [name for name, corner, _ in channels if corner]
             return self._run(call, cancel, lambda c: wire.assemble_fill(
                 c, on_progress=progress, as_sent=as_sent,
-                per_corner=per_corner))
+                per_corner=per_corner, sent=[name for name, _, _ in channels],
+                triangles=not options.keep_polygons))
         return self._run(call, cancel, lambda c: wire.assemble_patches(
             c, on_progress=progress, sent_vertices=len(v)))
 

@@ -281,12 +281,15 @@ class FillReport(_Plain):
     input_faces: int = 0
     listed: int = 0  # list_holes: selected, not filled
     stopped: int = 0  # the fill stopped before these (see FillStopped)
+    # What the answer could not carry (an attribute channel and why).
+    notes: List[str] = field(default_factory=list)
 
     @classmethod
     def from_proto(cls, m: Any) -> "FillReport":
         return _scalars(cls, m,
                         holes=[HoleReport.from_proto(h) for h in m.holes],
-                        repair=RepairReport.from_proto(m.repair))
+                        repair=RepairReport.from_proto(m.repair),
+                        notes=list(m.notes))
 
 
 @dataclass

@@ -367,7 +367,7 @@ class PatchReader:
                 f"attribute channels, not {len(p['channels'])}")
         for c, (name, dims, on_faces, on_replaced) in zip(m.attributes,
                                                           p["channels"]):
-            if c.name != name or c.dims != dims or dims == 0 or \
+            if c.name != name or c.dims != dims or not 1 <= dims <= 16 or \
                     len(c.faces) != dims * len(m.faces) or \
                     len(c.replaced) != 3 * dims * replacing:
                 raise AssemblyError(
@@ -511,7 +511,8 @@ def _raise_stopped(stopped: Optional[grpc.RpcError], result: Any) -> None:
 def assemble_fill(
         responses: Iterable[Any],
         on_progress: Optional[Callable[[FillProgress], None]] = None,
-        as_sent: bool = False, per_corner: Sequence[str] = ()
+        as_sent: bool = False, per_corner: Sequence[str] = (),
+        sent: Sequence[str] = (), triangles: bool = True
 ) -> FillResult:
     """The FillResult of a FillHoles response stream (answer
     ``FILL_ANSWER_MESH``) that ended OK; raises :class:`FillStopped`
@@ -519,7 +520,10 @@ def assemble_fill(
     ``as_sent``: the request kept polygons or sent attribute channels, so
     the mesh comes as :class:`SoupAssembler` reads it; the channels go in
     the result's ``point_data`` and ``corner_data`` as they came, except
-    the ``per_corner`` ones (sent per corner), which stay per corner.
+    the ``per_corner`` ones (sent per corner), which stay per corner; a
+    channel of ``sent`` that did not come back (a server from before
+    attributes on the wire) is named in ``report.notes``. ``triangles``:
+    polygons were not kept, so the faces must be the report's count.
 
     Raises :class:`DotError` (``INTERNAL``) when the report is missing or
     the mesh does not add up, with dotctl's messages.
@@ -528,6 +532,11 @@ def assemble_fill(
                                        "soup" if as_sent else "mesh")
     result = FillResult(vertices=mesh[0], faces=mesh[1],
                         report=FillReport.from_proto(report))
+    faces = report.input_faces + report.added_faces
+    if as_sent and triangles and len(mesh[1]) != faces:
+        raise DotError(grpc.StatusCode.INTERNAL,
+                       f"bad mesh from the server: {len(mesh[1])} faces "
+                       f"received, the report announced {faces}")
     if as_sent:
         corner_ids = (mesh[1].reshape(-1) if isinstance(mesh[1], np.ndarray)
                       else np.concatenate(mesh[1]))
@@ -538,6 +547,12 @@ def assemble_fill(
                 result.corner_data[name] = rows[corner_ids]
             else:
                 result.point_data[name] = rows
+        for name in sent:
+            if name not in mesh[2] and not any(
+                    f"'{name}'" in n for n in result.report.notes):
+                result.report.notes.append(
+                    f"attribute '{name}' was not answered: the server "
+                    f"predates attributes on the wire")
     _raise_stopped(stopped, result)
     return result
 

@@ -76,7 +76,8 @@ struct SentPatch {
   std::vector<PatchChannel> attributes;  // result.soup's channels, in order
 };
 // `soup_vertices`: how many vertices the soup had as sent. The fill must
-// have run without FillOptions::keep_polygons.
+// have run without FillOptions::keep_polygons (else, or when the result is
+// not laid out as FillHoles promises, there are none).
 std::vector<SentPatch> PatchesAsSent(const SoupFillResult& result,
                                      int64_t soup_vertices);
 

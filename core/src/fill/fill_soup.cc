@@ -121,6 +121,10 @@ std::vector<SentPatch> PatchesAsSent(const SoupFillResult& r,
     first_face[p] = cursor;
     cursor += h.patch.faces.size();
   }
+  // Not laid out as Merge lays it, or regrouped (keep_polygons): no
+  // triangle can be named.
+  if (cursor != (in_soup ? r.soup.faces.size() : r.fill.mesh.triangles.size()))
+    return {};
   if (!replacement.empty()) {
     for (int32_t f = 0; f < static_cast<int32_t>(r.input_faces); ++f) {
       auto it = replacement.find(r.repair.face_origin[f]);

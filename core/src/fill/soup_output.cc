@@ -179,6 +179,23 @@ void PerVertexWhereSeamless(size_t vertices, const FaceList& faces,
   ch->indices = {};
 }
 
+// Entries no corner names (a dropped face's, a split face's own) left
+// out, so that an answer has no more entries than corners.
+void DropUnusedEntries(AttributeChannel* ch) {
+  std::vector<int32_t> renumbered(ch->entries(), kNoEntry);
+  for (int32_t e : ch->indices) renumbered[e] = 0;
+  int32_t kept = 0;
+  for (size_t e = 0; e < renumbered.size(); ++e) {
+    if (renumbered[e] == kNoEntry) continue;
+    std::copy(ch->entry(e), ch->entry(e) + ch->dims,
+              ch->values.begin() + static_cast<int64_t>(kept) * ch->dims);
+    renumbered[e] = kept++;
+  }
+  ch->values.resize(static_cast<size_t>(kept) * ch->dims);
+  ch->values.shrink_to_fit();
+  for (int32_t& e : ch->indices) e = renumbered[e];
+}
+
 }  // namespace
 
 SoupTrace TraceSoup(const FaceList& faces,
@@ -197,18 +214,47 @@ SoupTrace TraceSoup(const FaceList& faces,
   auto mapped = [&](int32_t v) {
     return repair.vertex_map.empty() ? v : repair.vertex_map[v];
   };
-  for (AttributeChannel& ch : channels) {
-    std::vector<int32_t> entries(3 * repaired.triangles.size(), 0);
-    for (size_t t = 0; t < repaired.triangles.size(); ++t) {
-      const FaceView face = faces[repair.face_origin[t]];
-      for (int k = 0; k < 3; ++k) {
-        size_t c = 0;
-        while (c + 1 < face.size() &&
-               mapped(face[c]) != repaired.triangles[t][k])
-          ++c;
-        const auto corner = static_cast<size_t>(face.begin() - first) + c;
-        entries[3 * t + k] = ch.per_corner() ? ch.indices[corner] : face[c];
+  // The sent corner of each repaired triangle corner: the first corner of
+  // its face at that vertex (the face's last when none is, which repair
+  // does not make). Large polygons are searched in a sorted copy of their
+  // corners, so a client's 1,000-gon costs k log k, not k^2.
+  constexpr size_t kScanned = 8;  // faces this small are scanned
+  std::vector<std::pair<int32_t, int32_t>> sorted;  // (vertex, corner)
+  for (FaceView f : faces) {
+    if (f.size() <= kScanned) continue;
+    if (sorted.empty()) sorted.resize(faces.corners());
+    const auto at = static_cast<size_t>(f.begin() - first);
+    for (size_t c = 0; c < f.size(); ++c)
+      sorted[at + c] = {mapped(f[c]), static_cast<int32_t>(c)};
+    std::sort(sorted.begin() + at, sorted.begin() + at + f.size());
+  }
+  std::vector<int64_t> corner(3 * repaired.triangles.size());
+  for (size_t t = 0; t < repaired.triangles.size(); ++t) {
+    const FaceView face = faces[repair.face_origin[t]];
+    const auto at = static_cast<size_t>(face.begin() - first);
+    for (int k = 0; k < 3; ++k) {
+      const int32_t v = repaired.triangles[t][k];
+      size_t c = face.size() - 1;
+      if (face.size() <= kScanned) {
+        for (size_t i = 0; i < face.size(); ++i) {
+          if (mapped(face[i]) == v) {
+            c = i;
+            break;
+          }
+        }
+      } else {
+        const auto begin = sorted.begin() + at, end = begin + face.size();
+        const auto it = std::lower_bound(begin, end, std::make_pair(v, 0));
+        if (it != end && it->first == v) c = static_cast<size_t>(it->second);
       }
+      corner[3 * t + k] = static_cast<int64_t>(at + c);
+    }
+  }
+  sorted = {};
+  for (AttributeChannel& ch : channels) {
+    std::vector<int32_t> entries(corner.size());
+    for (size_t i = 0; i < corner.size(); ++i) {
+      entries[i] = ch.per_corner() ? ch.indices[corner[i]] : first[corner[i]];
     }
     trace.per_vertex.push_back(!ch.per_corner());
     ch.indices = std::move(entries);
@@ -307,6 +353,7 @@ PolygonSoup SoupOfFill(FillResult* fill,
     PerVertexWhereSeamless(out.vertices.size(), out.faces,
                            trace.per_vertex[c] ? &trace.sent_vertex : nullptr,
                            &ch);
+    if (ch.per_corner()) DropUnusedEntries(&ch);
   }
   return out;
 }

@@ -264,6 +264,60 @@ TEST(SoupOutputTest, AttributesThatDoNotFitTheSoupAreRefusedByName) {
       << r.fill.status.message;
 }
 
+// A polygon of hundreds of corners keeps each corner's own value (its
+// corners are found in a sorted copy, not by a scan per triangle corner).
+TEST(SoupOutputTest, ALargePolygonKeepsEveryCornersValue) {
+  const int n = 600;
+  PolygonSoup sent;
+  std::vector<int32_t> ring;
+  AttributeChannel uv{"uv", 2, {}, {}};
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    sent.vertices.push_back({std::cos(a), std::sin(a), 0});
+    ring.push_back(i);
+    uv.values.insert(uv.values.end(), {static_cast<float>(i), 0.5f});
+    uv.indices.push_back(n - 1 - i);  // entries in reverse: order matters
+  }
+  sent.faces.push_back(ring);
+  sent.attributes = {uv};
+  const SoupFillResult r = FillSoup(sent, Keeping());
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  ASSERT_EQ(r.soup.faces.size(), 1u);
+  EXPECT_EQ(r.soup.faces[0].size(), static_cast<size_t>(n));
+  const AttributeChannel& got = r.soup.attributes[0];
+  for (size_t c = 0; c < static_cast<size_t>(n); ++c) {
+    const int32_t v = r.soup.faces[0][c];
+    EXPECT_EQ(At(got, c, v)[0], static_cast<float>(n - 1 - v)) << c;
+  }
+}
+
+// Entries no corner names any more (a face repair dropped) are not
+// answered: a per-corner channel never has more entries than corners.
+TEST(SoupOutputTest, EntriesOfDroppedFacesAreNotAnswered) {
+  PolygonSoup sent = QuadGridWithHole(6, 2, 4);
+  sent.faces.push_back(sent.faces[0]);  // a duplicate repair drops
+  AttributeChannel uv{"uv", 2, {}, {}};
+  for (FaceView f : sent.faces) {
+    const bool right = sent.vertices[f[0]].x >= 3;  // a seam: per corner
+    for (int32_t v : f) {
+      uv.indices.push_back(static_cast<int32_t>(uv.entries()));
+      uv.values.insert(uv.values.end(),
+                       {static_cast<float>(sent.vertices[v].x + right),
+                        static_cast<float>(sent.vertices[v].y)});
+    }
+  }
+  sent.attributes = {uv};
+  const SoupFillResult r = FillSoup(sent, Keeping());
+  ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
+  ASSERT_GT(r.repair.duplicate_faces, 0);
+  const AttributeChannel& ch = r.soup.attributes[0];
+  ASSERT_TRUE(ch.per_corner());
+  EXPECT_LE(ch.entries(), r.soup.faces.corners());
+  std::vector<bool> named(ch.entries(), false);
+  for (int32_t e : ch.indices) named[e] = true;
+  EXPECT_EQ(std::count(named.begin(), named.end(), false), 0);
+}
+
 // Without keep_polygons the answer is the fill's triangles, in order, and
 // the channels ride on them.
 TEST(SoupOutputTest, WithoutKeepPolygonsTheTrianglesCarryTheAttributes) {
