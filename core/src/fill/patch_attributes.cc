@@ -149,16 +149,27 @@ class PatchInterpolator {
       arcs.emplace_back();
       for (size_t j = i; j < n && !seen[j]; j = next[j]) add(j);
     }
+    // More arcs than a texture's seams make (values that disagree all
+    // along the rim) are blended as one: a field per arc costs a solve.
+    constexpr size_t kMaxArcs = 32;
+    if (arcs.size() > kMaxArcs) {
+      std::vector<std::pair<int, int32_t>> all;
+      for (const auto& arc : arcs)
+        all.insert(all.end(), arc.begin(), arc.end());
+      arcs.assign(1, std::move(all));
+    }
     // A vertex named twice in an arc keeps its first entry; arcs without
     // any value are dropped.
+    std::vector<char> named;
     for (auto& arc : arcs) {
       std::vector<std::pair<int, int32_t>> unique;
       for (const auto& p : arc) {
-        if (std::none_of(unique.begin(), unique.end(),
-                         [&](const auto& q) { return q.first == p.first; })) {
-          unique.push_back(p);
-        }
+        if (static_cast<size_t>(p.first) >= named.size())
+          named.resize(p.first + 1, 0);
+        if (!named[p.first]) unique.push_back(p);
+        named[p.first] = 1;
       }
+      for (const auto& p : unique) named[p.first] = 0;
       arc = std::move(unique);
     }
     arcs.erase(std::remove_if(arcs.begin(), arcs.end(),
