@@ -306,6 +306,35 @@ def test_fill_holes_gives_new_faces_uvs_and_colours():
         bm.free()
 
 
+def test_select_holes_selects_the_rims_fill_holes_would_fill():
+    """The listing (FillHoles dry run): nothing filled, exactly the rims of
+    the holes within the limits selected, their count and sizes reported."""
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12)
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.85)  # a 24-edge hole at the pole
+    delete_faces(sphere, lambda c: c.x > 0.9 and abs(c.z) < 0.2)  # small
+    v0, f0, b0 = counts(sphere)
+    bpy.ops.object.mode_set(mode='EDIT')
+    try:
+        with Recording("list_holes") as listing:
+            assert bpy.ops.mesh.dot_select_holes(max_hole_edges=12) \
+                == {'FINISHED'}
+        ((_, kwargs, report),) = listing.calls
+        assert report.loops == 2 and report.skipped == 1, report
+        bm = bmesh.from_edit_mesh(sphere.data)
+        chosen = [e for e in bm.edges if e.select]
+        assert chosen and len(chosen) < b0
+        assert all(e.is_boundary and e.verts[0].co.x > 0.8 for e in chosen)
+        assert bpy.ops.mesh.dot_select_holes() == {'FINISHED'}
+        bm = bmesh.from_edit_mesh(sphere.data)
+        assert sum(e.select for e in bm.edges) == b0
+        assert all(e.is_boundary for e in bm.edges if e.select)
+    finally:
+        bpy.ops.object.mode_set(mode='OBJECT')
+    assert counts(sphere) == (v0, f0, b0), "nothing was filled"
+
+
 def test_fill_holes_merges_split_vertices_first():
     """A mesh imported with split vertices (OBJ/STL exporters write seams
     twice): before, the add-on sent it as it was and holes through a seam

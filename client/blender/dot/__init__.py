@@ -8,6 +8,8 @@ Operators (F3 search, or the menus below):
   mesh.dot_triangulate_loops Edit Mode > Face: a DOT patch per selected
                              loop, loose edges too (Triangulate)
   mesh.dot_fill_holes        Object/Edit Mode: fill every hole (FillHoles)
+  mesh.dot_select_holes      Edit Mode: select the rims of the holes Fill Holes
+                             would fill, and report their sizes (dry run)
   mesh.dot_triangulate_curve Object Mode: a closed curve -> a surface
 """
 
@@ -39,6 +41,7 @@ def _menu_edit_faces(self, context):
     self.layout.operator(operators.MESH_OT_dot_fill_loops.bl_idname)
     self.layout.operator(operators.MESH_OT_dot_triangulate_loops.bl_idname)
     self.layout.operator(operators.MESH_OT_dot_fill_holes.bl_idname)
+    self.layout.operator(operators.MESH_OT_dot_select_holes.bl_idname)
 
 
 def _menu_object(self, context):

@@ -23,9 +23,48 @@ def selected_loops(bm):
     the faces beside it so a patch running the same way is wound like its
     neighbours; and the number of selected chains that are not closed
     simple loops (skipped)."""
+    return _loops(bm, lambda e: e.select and not e.hide and
+                  (e.is_boundary or e.is_wire))
+
+
+def boundary_loops(bm):
+    """Every closed loop of boundary edges (the rims of the holes), as
+    selected_loops gives them."""
+    return _loops(bm, lambda e: e.is_boundary)
+
+
+def loop_centroid(bm, loop):
+    """The length-weighted centroid of a loop's edges, as FillHoles reports
+    a hole's (HoleReport.centroid)."""
+    bm.verts.ensure_lookup_table()
+    points = np.array([bm.verts[i].co[:] for i in loop], dtype=np.float64)
+    following = np.roll(points, -1, axis=0)
+    length = np.linalg.norm(following - points, axis=1)
+    if length.sum() == 0:
+        return points.mean(axis=0)
+    return ((points + following) / 2 * length[:, None]).sum(0) / length.sum()
+
+
+def select_loop_edges(bm, loops):
+    """Selects exactly the edges of `loops` (and their vertices)."""
+    bm.verts.ensure_lookup_table()
+    for f in bm.faces:
+        f.select_set(False)
+    for e in bm.edges:
+        e.select_set(False)
+    for v in bm.verts:
+        v.select_set(False)
+    for loop in loops:
+        for a, b in zip(loop, loop[1:] + loop[:1]):
+            e = bm.edges.get((bm.verts[a], bm.verts[b]))
+            if e is not None:
+                e.select_set(True)
+
+
+def _loops(bm, keep):
     adjacent = defaultdict(list)
     for e in bm.edges:
-        if e.select and not e.hide and (e.is_boundary or e.is_wire):
+        if keep(e):
             a, b = e.verts
             adjacent[a.index].append((b.index, e))
             adjacent[b.index].append((a.index, e))

@@ -617,6 +617,80 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
         return {'FINISHED'}
 
 
+# -- mesh.dot_select_holes --------------------------------------------------
+
+
+class MESH_OT_dot_select_holes(DotOperator, bpy.types.Operator):
+    """Find the holes of the mesh through the DOT server (FillHoles with
+    dry_run: nothing is filled), select the rims of those Fill Holes would
+    fill with these limits, and report their sizes"""
+    bl_idname = "mesh.dot_select_holes"
+    bl_label = "Select Holes (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    max_hole_edges: IntProperty(
+        name="Max Hole Edges", default=0, min=0,
+        description="Only holes with at most this many edges (0: any)")
+    max_hole_diameter: FloatProperty(
+        name="Max Hole Diameter", default=0.0, min=0.0, subtype='DISTANCE',
+        description="Only holes at most this wide, bounding-box diagonal "
+        "in the object's units (0: any)")
+    skip_longest: BoolProperty(
+        name="Skip Longest Border", default=False,
+        description="Leave out the longest border (a terrain's rim)")
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode == 'EDIT_MESH'
+
+    def prepare(self, context):
+        obj, bm = _edit_bmesh(context)
+        loops, _ = geometry.boundary_loops(bm)
+        if not loops:
+            self.report({'INFO'}, "DOT: the mesh has no holes")
+            return None
+        vertices = geometry.vertex_array(bm)
+        faces, _ = geometry.triangles(bm)
+        options = dot_client.FillOptions(
+            max_hole_edges=self.max_hole_edges,
+            max_hole_diameter=self.max_hole_diameter,
+            skip_longest=self.skip_longest, no_repair=True)
+        state = {"loops": loops,
+                 "centroids": [geometry.loop_centroid(bm, l) for l in loops],
+                 "counts": (len(bm.verts), len(bm.faces))}
+
+        def work(client, cancel, progress):
+            progress(0.0, "finding the holes")
+            return client.list_holes(vertices, faces, options=options,
+                                     cancel=cancel)
+        return work, state
+
+    def finish(self, context, state, report):
+        obj, bm = _edit_bmesh(context)
+        geometry.check_unchanged(bm, *state["counts"])
+        listed = [h for h in report.holes if h.status == "listed"]
+        # Each listed hole is the rim whose centroid is nearest its own.
+        centroids = np.array(state["centroids"]).reshape(-1, 3)
+        chosen = []
+        for h in listed:
+            d = np.linalg.norm(centroids - np.array(h.centroid), axis=1)
+            chosen.append(state["loops"][int(np.argmin(d))])
+        geometry.select_loop_edges(bm, chosen)
+        bm.select_flush_mode()
+        bmesh.update_edit_mesh(obj.data)
+        sizes = sorted(h.boundary_vertices for h in listed)
+        reasons = sorted({h.reason for h in report.holes
+                          if h.status == "skipped" and h.reason})
+        self.report({'INFO'}, f"DOT: {report.loops} holes: {len(listed)} "
+                    "selected"
+                    + (f" ({sizes[0]} edges)" if sizes and sizes[0] == sizes[-1]
+                       else f" ({sizes[0]} to {sizes[-1]} edges)" if sizes
+                       else "")
+                    + (f", {report.skipped} left out ({'; '.join(reasons)})"
+                       if report.skipped else ""))
+        return {'FINISHED'}
+
+
 # -- mesh.dot_triangulate_curve ---------------------------------------------
 
 
@@ -761,4 +835,5 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
 
 
 classes = (MESH_OT_dot_fill_loops, MESH_OT_dot_triangulate_loops,
-           MESH_OT_dot_fill_holes, MESH_OT_dot_triangulate_curve)
+           MESH_OT_dot_fill_holes, MESH_OT_dot_select_holes,
+           MESH_OT_dot_triangulate_curve)
