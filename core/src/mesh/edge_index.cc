@@ -42,7 +42,7 @@ bool BuildEdgeIndex(const std::vector<Triangle>& triangles, RunTicker& ticker,
     for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
   }
   for (int32_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-  std::vector<EdgeUse>& uses = index->uses;
+  FlatVector<EdgeUse>& uses = index->uses;
   uses.resize(3 * triangles.size());
   std::vector<size_t> next(start.begin(), start.end() - 1);
   for (size_t t = 0; t < triangles.size(); ++t) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dot/geometry.h"
+#include "util/flat_vector.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -45,7 +46,9 @@ struct EdgeUse {
 };
 
 struct EdgeIndex {
-  std::vector<EdgeUse> uses;  // 3 per triangle, sorted (key, triangle, side)
+  // 3 per triangle, sorted (key, triangle, side); not zeroed before it is
+  // filled (a scan's index is hundreds of MB).
+  FlatVector<EdgeUse> uses;
 };
 
 // Indexes every side of every triangle (vertex ids must be >= 0). Linear

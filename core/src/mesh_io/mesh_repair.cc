@@ -27,10 +27,12 @@ bool ZeroArea(const std::vector<Vec3>& v, const Triangle& t) {
 
 // Flips faces so that each manifold edge runs opposite ways in its two
 // faces, component by component (breadth first from each component's
-// first face); closed components end up with positive volume.
+// first face); closed components end up with positive volume. `index`
+// receives the faces' edge index; flips keep its edges and triangles (not
+// its sides).
 Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
-              RunTicker& ticker, RepairReport* report) {
-  EdgeIndex index;
+              RunTicker& ticker, RepairReport* report, EdgeIndex* edges) {
+  EdgeIndex& index = *edges;
   if (!BuildEdgeIndex(*faces, ticker, &index)) return ticker.status();
   // Per face side: the other use of that edge, or -1.
   std::vector<int32_t> across(3 * faces->size(), -1);
@@ -113,10 +115,12 @@ Status Orient(const std::vector<Vec3>& v, std::vector<Triangle>* faces,
   return OkStatus();
 }
 
-// Vertices whose faces form more than one fan (joined across edges).
+// Vertices whose faces form more than one fan (joined across edges);
+// `index`: the faces' edge index (its sides are not used).
 Status CountNonManifoldVertices(size_t vertex_count,
                                 const std::vector<Triangle>& faces,
-                                RunTicker& ticker, int64_t* count) {
+                                const EdgeIndex& index, RunTicker& ticker,
+                                int64_t* count) {
   // Union-find over face corners: corners of one vertex in faces sharing an
   // edge through it are one fan.
   UnionFind corners(3 * faces.size());
@@ -126,8 +130,6 @@ Status CountNonManifoldVertices(size_t vertex_count,
     }
     return -1;
   };
-  EdgeIndex index;
-  if (!BuildEdgeIndex(faces, ticker, &index)) return ticker.status();
   bool stopped = false;
   ForEachEdge(index, [&](const EdgeUses& e) {
     if (!ticker.Tick()) return !(stopped = true);
@@ -340,10 +342,11 @@ Status Repair(const PolygonSoup& soup, PolygonSoup* owned,
         std::to_string(report->duplicate_faces) + ")");
   }
   if (!ticker.Poll()) return ticker.status();
-  s = Orient(out->vertices, &out->triangles, ticker, report);
+  EdgeIndex edges;  // built once for both
+  s = Orient(out->vertices, &out->triangles, ticker, report, &edges);
   if (!s.ok()) return s;
-  return CountNonManifoldVertices(out->vertices.size(), out->triangles, ticker,
-                                  &report->non_manifold_vertices);
+  return CountNonManifoldVertices(out->vertices.size(), out->triangles, edges,
+                                  ticker, &report->non_manifold_vertices);
 }
 
 }  // namespace
