@@ -501,7 +501,23 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
 # -- mesh.dot_fill_holes ----------------------------------------------------
 
 
-class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
+class HoleLimitProps:
+    """Which holes Fill Holes fills and Select Holes selects: the same
+    limits (FillOptions' selection), so a listing shows what a fill does."""
+    max_hole_edges: IntProperty(
+        name="Max Hole Edges", default=0, min=0,
+        description="Only holes with at most this many edges (0: any)")
+    max_hole_diameter: FloatProperty(
+        name="Max Hole Diameter", default=0.0, min=0.0, subtype='DISTANCE',
+        description="Only holes at most this wide, bounding-box diagonal "
+        "in the object's units (0: any)")
+    skip_longest: BoolProperty(
+        name="Skip Longest Border", default=False,
+        description="Leave the longest border open (a terrain's rim)")
+
+
+class MESH_OT_dot_fill_holes(DotOperator, WeightProps, HoleLimitProps,
+                             bpy.types.Operator):
     """Fill every hole of the active mesh through the DOT server's
     FillHoles: the optimal patch, refined and faired into the surface"""
     bl_idname = "mesh.dot_fill_holes"
@@ -509,16 +525,6 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
     bl_options = {'REGISTER', 'UNDO'}
 
     stage: EnumProperty(name="Stage", items=STAGES, default='FAIR')
-    max_hole_edges: IntProperty(
-        name="Max Hole Edges", default=0, min=0,
-        description="Fill only holes with at most this many edges (0: any)")
-    max_hole_diameter: FloatProperty(
-        name="Max Hole Diameter", default=0.0, min=0.0, subtype='DISTANCE',
-        description="Fill only holes at most this wide, bounding-box "
-        "diagonal in the object's units (0: any)")
-    skip_longest: BoolProperty(
-        name="Skip Longest Border", default=False,
-        description="Leave the longest border open (a terrain's rim)")
     merge_duplicates: BoolProperty(
         name="Merge Duplicate Vertices", default=True,
         description="First merge vertices at exactly the same position, as "
@@ -620,24 +626,14 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, bpy.types.Operator):
 # -- mesh.dot_select_holes --------------------------------------------------
 
 
-class MESH_OT_dot_select_holes(DotOperator, bpy.types.Operator):
+class MESH_OT_dot_select_holes(DotOperator, HoleLimitProps,
+                               bpy.types.Operator):
     """Find the holes of the mesh through the DOT server (FillHoles with
     dry_run: nothing is filled), select the rims of those Fill Holes would
     fill with these limits, and report their sizes"""
     bl_idname = "mesh.dot_select_holes"
     bl_label = "Select Holes (DOT)"
     bl_options = {'REGISTER', 'UNDO'}
-
-    max_hole_edges: IntProperty(
-        name="Max Hole Edges", default=0, min=0,
-        description="Only holes with at most this many edges (0: any)")
-    max_hole_diameter: FloatProperty(
-        name="Max Hole Diameter", default=0.0, min=0.0, subtype='DISTANCE',
-        description="Only holes at most this wide, bounding-box diagonal "
-        "in the object's units (0: any)")
-    skip_longest: BoolProperty(
-        name="Skip Longest Border", default=False,
-        description="Leave out the longest border (a terrain's rim)")
 
     @classmethod
     def poll(cls, context):
