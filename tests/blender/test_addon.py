@@ -335,6 +335,28 @@ def test_select_holes_selects_the_rims_fill_holes_would_fill():
     assert counts(sphere) == (v0, f0, b0), "nothing was filled"
 
 
+def test_fill_holes_fills_every_selected_mesh():
+    """Object Mode with several meshes selected: each one's holes are
+    filled, one FillHoles call after another over the one connection."""
+    clear_scene()
+    spheres = []
+    for x in (-3.0, 3.0):
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8,
+                                             location=(x, 0, 0))
+        sphere = bpy.context.active_object
+        delete_faces(sphere, lambda c: c.z > 0.8)
+        spheres.append(sphere)
+    activate(spheres[0])
+    for o in spheres:
+        o.select_set(True)
+    assert all(counts(o)[2] > 0 for o in spheres)
+    with Recording("fill_patches") as fills:
+        assert bpy.ops.mesh.dot_fill_holes() == {'FINISHED'}
+    assert len(fills.calls) == 2
+    for o in spheres:
+        check_mesh(o, boundary_edges=0)
+
+
 def test_fill_holes_merges_split_vertices_first():
     """A mesh imported with split vertices (OBJ/STL exporters write seams
     twice): before, the add-on sent it as it was and holes through a seam

@@ -250,8 +250,10 @@ class DotOperator:
         part of it is in the mesh."""
         result = self.finish(context, state, payload)
         if stopped is not None:
+            answers = payload if isinstance(payload, list) else [payload]
+            left = sum(a.report.stopped for a in answers)
             self.report({'WARNING'}, f"{describe(stopped)} (stopped early: "
-                        f"{payload.report.stopped} holes not filled)")
+                        f"{left} holes not filled)")
         return result
 
 
@@ -518,8 +520,9 @@ class HoleLimitProps:
 
 class MESH_OT_dot_fill_holes(DotOperator, WeightProps, HoleLimitProps,
                              bpy.types.Operator):
-    """Fill every hole of the active mesh through the DOT server's
-    FillHoles: the optimal patch, refined and faired into the surface"""
+    """Fill every hole of the active mesh (in Object Mode, of every
+    selected mesh) through the DOT server's FillHoles: the optimal patch,
+    refined and faired into the surface"""
     bl_idname = "mesh.dot_fill_holes"
     bl_label = "Fill Holes (DOT)"
     bl_options = {'REGISTER', 'UNDO'}
@@ -551,75 +554,125 @@ class MESH_OT_dot_fill_holes(DotOperator, WeightProps, HoleLimitProps,
         layout.prop(self, "preset")
         self.draw_weights(layout, self.preset == 'CUSTOM')
 
-    def _bmesh(self, context):
-        obj = context.active_object
+    @staticmethod
+    def _bmesh(obj):
         if obj.mode == 'EDIT':
-            return obj, bmesh.from_edit_mesh(obj.data), True
+            return bmesh.from_edit_mesh(obj.data), True
         bm = bmesh.new()
         bm.from_mesh(obj.data)
-        return obj, bm, False
+        return bm, False
+
+    @staticmethod
+    def _targets(context):
+        """Edit Mode: the mesh being edited. Object Mode: every selected
+        mesh object (the active one first), or the active one alone."""
+        active = context.active_object
+        if active.mode == 'EDIT':
+            return [active]
+        chosen = [o for o in context.selected_objects
+                  if o.type == 'MESH' and o is not active]
+        return [active] + sorted(chosen, key=lambda o: o.name)
 
     def prepare(self, context):
-        obj, bm, edit = self._bmesh(context)
-        try:
-            merged = 0
-            if self.merge_duplicates:
-                merged = geometry.merge_coincident(bm)
-                if merged and edit:
-                    bmesh.update_edit_mesh(obj.data, destructive=True)
-                elif merged:
-                    bm.to_mesh(obj.data)
-                    obj.data.update()
-            if not any(e.is_boundary for e in bm.edges):
-                self.report({'INFO'}, "DOT: the mesh has no holes")
-                return None
-            vertices = geometry.vertex_array(bm)
-            faces, owner = geometry.triangles(bm)
-            corners = geometry.corner_data(bm)
-            state = {"faces": faces, "owner": owner, "corners": corners,
-                     "counts": (len(bm.verts), len(bm.faces)),
-                     "merged": merged}
-        finally:
-            if not edit:
-                bm.free()
+        meshes = []  # (object name, vertices, faces, corners, state)
+        for obj in self._targets(context):
+            bm, edit = self._bmesh(obj)
+            try:
+                merged = 0
+                if self.merge_duplicates:
+                    merged = geometry.merge_coincident(bm)
+                    if merged and edit:
+                        bmesh.update_edit_mesh(obj.data, destructive=True)
+                    elif merged:
+                        bm.to_mesh(obj.data)
+                        obj.data.update()
+                if not any(e.is_boundary for e in bm.edges):
+                    continue
+                faces, owner = geometry.triangles(bm)
+                corners = geometry.corner_data(bm)
+                meshes.append((obj.name, geometry.vertex_array(bm), faces,
+                               corners,
+                               {"faces": faces, "owner": owner,
+                                "corners": corners,
+                                "counts": (len(bm.verts), len(bm.faces)),
+                                "merged": merged}))
+            finally:
+                if not edit:
+                    bm.free()
+        if not meshes:
+            self.report({'INFO'}, "DOT: the mesh has no holes")
+            return None
         options = dot_client.FillOptions(
             stage=self.stage.lower(), weights=self.weights("fill"),
             max_hole_edges=self.max_hole_edges,
             max_hole_diameter=self.max_hole_diameter,
             skip_longest=self.skip_longest, no_repair=True)
-        return _fill_work(vertices, faces, options, corners), state
+        works = [(name, _fill_work(v, f, options, c))
+                 for name, v, f, c, _ in meshes]
 
-    def finish(self, context, state, result):
-        obj, bm, edit = self._bmesh(context)
-        try:
-            geometry.check_unchanged(bm, *state["counts"])
-            if edit:
-                for f in bm.faces:
-                    f.select_set(False)
-            geometry.add_patches(bm, result.patches, state["counts"][0],
-                                 state["faces"], state["owner"],
-                                 state["corners"])
-            bm.normal_update()
-            if edit:
-                bm.select_flush_mode()
-                bmesh.update_edit_mesh(obj.data, loop_triangles=True,
-                                       destructive=True)
-            else:
-                bm.to_mesh(obj.data)
-                obj.data.update()
-        finally:
-            if not edit:
-                bm.free()
-        r = result.report
-        for p in _hole_problems(r):
-            self.report({'WARNING'}, f"DOT: {p}")
-        merged = state.get("merged", 0)
-        self.report({'INFO'}, f"DOT: {r.filled} of {r.loops} holes filled"
-                    f" ({r.skipped} skipped), +{r.added_vertices} vertices, "
-                    f"+{r.added_faces} faces"
-                    + (", closed" if r.closed else "")
-                    + (f"; merged {merged} duplicate vertices first"
-                       if merged else ""))
+        def work(client, cancel, progress):
+            # One mesh after another over the one connection; a stop keeps
+            # the meshes done and the holes finished in the one it hit.
+            done = []
+            for i, (name, fill) in enumerate(works):
+                def step(fraction, text, i=i, name=name):
+                    prefix = (f"{name} ({i + 1} of {len(works)}): "
+                              if len(works) > 1 else "")
+                    progress((i + fraction) / len(works), prefix + text)
+                try:
+                    done.append(fill(client, cancel, step))
+                except dot_client.FillStopped as stopped:
+                    done.append(stopped.result)
+                    raise dot_client.FillStopped(stopped.code,
+                                                 stopped.message, done)
+            return done
+        return work, [(name, state) for name, _, _, _, state in meshes]
+
+    def finish(self, context, state, results):
+        lines = []
+        totals = [0, 0, 0]  # filled, loops, closed meshes
+        for (name, st), result in zip(state, results):
+            obj = bpy.data.objects[name]
+            bm, edit = self._bmesh(obj)
+            try:
+                geometry.check_unchanged(bm, *st["counts"])
+                if edit:
+                    for f in bm.faces:
+                        f.select_set(False)
+                geometry.add_patches(bm, result.patches, st["counts"][0],
+                                     st["faces"], st["owner"], st["corners"])
+                bm.normal_update()
+                if edit:
+                    bm.select_flush_mode()
+                    bmesh.update_edit_mesh(obj.data, loop_triangles=True,
+                                           destructive=True)
+                else:
+                    bm.to_mesh(obj.data)
+                    obj.data.update()
+            finally:
+                if not edit:
+                    bm.free()
+            r = result.report
+            for p in _hole_problems(r):
+                self.report({'WARNING'}, f"DOT: {name}: {p}" if len(state) > 1
+                            else f"DOT: {p}")
+            merged = st.get("merged", 0)
+            lines.append(f"{r.filled} of {r.loops} holes filled"
+                         f" ({r.skipped} skipped), +{r.added_vertices} "
+                         f"vertices, +{r.added_faces} faces"
+                         + (", closed" if r.closed else "")
+                         + (f"; merged {merged} duplicate vertices first"
+                            if merged else ""))
+            totals[0] += r.filled
+            totals[1] += r.loops
+            totals[2] += r.closed
+        if len(lines) == 1:
+            self.report({'INFO'}, f"DOT: {lines[0]}")
+        else:
+            for (name, _), line in zip(state, lines):
+                self.report({'INFO'}, f"DOT: {name}: {line}")
+            self.report({'INFO'}, f"DOT: {len(lines)} meshes: {totals[0]} "
+                        f"of {totals[1]} holes filled, {totals[2]} closed")
         return {'FINISHED'}
 
 
