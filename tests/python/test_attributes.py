@@ -34,6 +34,19 @@ def test_point_and_corner_data_are_interpolated_into_new_vertices(client):
         r.faces.reshape(-1)])[:, :2], atol=1e-4)
 
 
+def test_colours_on_a_0_to_255_scale_stay_on_it(client):
+    """Values blend with positive weights: new colours stay within the
+    rim's range whatever its scale (no clamp to [0, 1])."""
+    v, f = grid_with_hole(16)
+    bytes_ = (linear(v) * 255).astype(np.int32)
+    r = client.fill_holes(v, f, skip_longest=True,
+                          point_data={"color": bytes_})
+    new = r.point_data["color"][len(v):]
+    assert len(new) > 0
+    assert new.max() > 1.5 and new.min() >= bytes_.min() - 1e-3
+    assert new.max() <= bytes_.max() + 1e-3
+
+
 def test_polygons_are_kept_on_request(client):
     v, quads = box_with_hole()
     r = client.fill_holes(v, quads, keep_polygons=True)
@@ -67,6 +80,9 @@ def test_patches_carry_every_channel_at_their_corners(client):
 
 @pytest.mark.parametrize("point_data, corner_data, message", [
     ({"c": np.zeros((3, 3))}, None, "must have shape (256, d)"),
+    ({"c": np.zeros((3, 3))}, None, "a row per vertex"),
+    ({"c": np.zeros(256, dtype=complex)}, None, "must be real numbers"),
+    ({"c": np.full(256, 1e300)}, None, "not finite in single precision"),
     (None, {"uv": np.zeros((5, 2))}, "a row per face corner"),
     ({"c": np.full((256, 1), np.nan)}, None, "row 0 is not finite"),
     ({"c": np.zeros((256, 17))}, None, "1 <= d <= 16"),

@@ -500,8 +500,10 @@ class Client:
         channels. They come back in the result's ``point_data`` and
         ``corner_data``, carried through the repair and interpolated into
         every new vertex (harmonic from the hole's rim, seams continued;
-        a channel named ``"normal"`` gets the patch's own normals, one
-        named ``"color"`` stays in [0, 1]).
+        a channel named ``"normal"`` gets the patch's own normals; every
+        other value blends with positive weights, so it stays within the
+        range of the values it comes from: colours on a 0..255 scale stay
+        on it).
 
         ``progress(FillProgress)`` is called as the server's phases start
         (repair, loops, holes, merge) and as holes are done, with an

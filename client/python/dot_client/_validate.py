@@ -148,8 +148,8 @@ def attributes(point_data: Any, corner_data: Any, vertex_count: int,
     finite, at most 16 channels, names unique, 1 to 64 bytes."""
     out: List[Tuple[str, bool, np.ndarray]] = []
     for per_corner, data, rows, what in (
-            (False, point_data, vertex_count, "vertices"),
-            (True, corner_data, corner_count, "face corners")):
+            (False, point_data, vertex_count, "vertex"),
+            (True, corner_data, corner_count, "face corner")):
         if data is None:
             continue
         if not isinstance(data, dict):
@@ -163,22 +163,24 @@ def attributes(point_data: Any, corner_data: Any, vertex_count: int,
                     f"bytes")
             if any(name == n for n, _, _ in out):
                 raise InvalidInput(f"attribute {name!r} is given twice")
-            try:
-                a = np.asarray(value, dtype=np.float32)
-            except (TypeError, ValueError) as e:
-                raise InvalidInput(f"attribute {name!r} must be numbers: {e}"
-                                   ) from None
+            raw = np.asarray(value)
+            if raw.dtype.kind not in "biuf":
+                raise InvalidInput(f"attribute {name!r} must be real numbers; "
+                                   f"got dtype {raw.dtype}")
+            with np.errstate(over="ignore", invalid="ignore"):
+                a = raw.astype(np.float32)
             if a.ndim == 1:
                 a = a.reshape(-1, 1)
             if a.ndim != 2 or not 1 <= a.shape[1] <= 16 or len(a) != rows:
                 raise InvalidInput(
                     f"attribute {name!r} must have shape ({rows}, d), "
-                    f"1 <= d <= 16 (a row per {what[:-1]}); got "
+                    f"1 <= d <= 16 (a row per {what}); got "
                     f"shape {a.shape}")
             finite = np.isfinite(a).all(axis=1)
             if not finite.all():
                 raise InvalidInput(f"attribute {name!r} row "
-                                   f"{int(np.argmin(finite))} is not finite")
+                                   f"{int(np.argmin(finite))} is not finite "
+                                   f"in single precision (float32, as sent)")
             out.append((name, per_corner, np.ascontiguousarray(a)))
     if len(out) > 16:
         raise InvalidInput(f"{len(out)} attribute channels; at most 16")

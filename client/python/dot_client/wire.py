@@ -207,8 +207,9 @@ class SoupAssembler:
                     or ch["corners"]:
                 raise AssemblyError(f"{where}: attribute '{name}' values do "
                                     f"not continue at entry {ch['entries']}")
-            ch["values"].append(np.asarray(a.values, dtype=np.float32)
-                                .reshape(-1, ch["dims"]))
+            ch["values"].append(np.fromiter(
+                a.values, dtype=np.float32,
+                count=len(a.values)).reshape(-1, ch["dims"]))
             ch["entries"] += len(a.values) // ch["dims"]
         if len(a.indices):
             if not ch["per_corner"] or a.first_corner != ch["corners"]:
@@ -373,8 +374,10 @@ class PatchReader:
                 raise AssemblyError(
                     f"a patch message of hole {m.hole}: attribute "
                     f"'{c.name}' does not match the message's corners")
-            on_faces.append(np.asarray(c.faces, dtype=np.float32))
-            on_replaced.append(np.asarray(c.replaced, dtype=np.float32))
+            on_faces.append(np.fromiter(c.faces, dtype=np.float32,
+                                        count=len(c.faces)))
+            on_replaced.append(np.fromiter(c.replaced, dtype=np.float32,
+                                           count=len(c.replaced)))
         self._next += len(m.vertices) // 3
         for ids in [m.faces] + [r.triangles for r in m.replaced_faces]:
             if len(ids) and max(ids) >= self._next:

@@ -25,8 +25,9 @@ inline bool SameEntry(const AttributeChannel& ch, int32_t a, int32_t b) {
   return a == b || std::equal(ch.entry(a), ch.entry(a) + ch.dims, ch.entry(b));
 }
 
-// Appends an entry and returns its index; normals renormalized, colours
-// clamped, as the channel's name says.
+// Appends an entry and returns its index; a "normal" renormalized. (A
+// colour is not clamped to [0, 1]: blends stay within their inputs' range,
+// and a client's colours may be on a 0..255 scale.)
 inline int32_t AddEntry(AttributeChannel* ch, std::vector<double> value) {
   if (ch->name == "normal" && value.size() == 3) {
     const double n = std::sqrt(value[0] * value[0] + value[1] * value[1] +
@@ -34,8 +35,6 @@ inline int32_t AddEntry(AttributeChannel* ch, std::vector<double> value) {
     if (n > 0) {
       for (double& x : value) x /= n;
     }
-  } else if (ch->name == "color") {
-    for (double& x : value) x = std::clamp(x, 0.0, 1.0);
   }
   const auto e = static_cast<int32_t>(ch->entries());
   for (double x : value) ch->values.push_back(static_cast<float>(x));

@@ -18,8 +18,9 @@
 //  - a "normal" channel's new entries are the patch's own vertex normals
 //    (area-weighted, turned to agree with the rim's), as a renderer would
 //    compute them: a blend of the rim's would not follow the new surface.
-//    Barycentric "normal" entries are renormalized; "color" entries are
-//    clamped to [0, 1].
+//    Barycentric "normal" entries are renormalized. Every other value is
+//    a blend with positive weights, so it stays within the range of the
+//    values it comes from (colours on a 0..255 scale stay on it).
 #ifndef DOT_CORE_FILL_SOUP_OUTPUT_H_
 #define DOT_CORE_FILL_SOUP_OUTPUT_H_
 

@@ -237,9 +237,11 @@ void WriteObjSoup(std::ostream& out, const PolygonSoup& soup,
   for (size_t v = 0; v < soup.vertices.size(); ++v) {
     const Vec3& p = soup.vertices[v];
     out << "v " << p.x << ' ' << p.y << ' ' << p.z;
-    if (color != nullptr) {
+    if (color != nullptr) {  // floats: every digit, not a double's 17
       const float* c = color->entry(v);
+      const auto coordinates = out.precision(9);
       out << ' ' << c[0] << ' ' << c[1] << ' ' << c[2];
+      out.precision(coordinates);
     }
     out << '\n';
   }
