@@ -57,6 +57,13 @@ SoupFillResult FillSoup(PolygonSoup soup, const FillOptions& options,
   out.input_faces = static_cast<int64_t>(mesh.triangles.size());
   SoupTrace trace;
   if (!channels.empty()) {
+    if (out.repair.duplicate_faces > 0) {
+      // A dropped copy's own values (another UV chart) are not carried.
+      out.notes.push_back(
+          std::to_string(out.repair.duplicate_faces) +
+          " duplicate triangles were dropped by the repair; attributes "
+          "come from the copy kept, not from the dropped ones");
+    }
     trace = TraceSoup(faces_as_sent, std::move(channels), out.repair, mesh);
     faces_as_sent = {};
   }

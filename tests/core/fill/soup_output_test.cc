@@ -310,6 +310,9 @@ TEST(SoupOutputTest, EntriesOfDroppedFacesAreNotAnswered) {
   const SoupFillResult r = FillSoup(sent, Keeping());
   ASSERT_TRUE(r.fill.status.ok()) << r.fill.status.message;
   ASSERT_GT(r.repair.duplicate_faces, 0);
+  ASSERT_EQ(r.notes.size(), 1u);  // the copy's own values are not kept
+  EXPECT_NE(r.notes[0].find("duplicate triangles were dropped"),
+            std::string::npos);
   const AttributeChannel& ch = r.soup.attributes[0];
   ASSERT_TRUE(ch.per_corner());
   EXPECT_LE(ch.entries(), r.soup.faces.corners());
