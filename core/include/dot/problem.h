@@ -57,6 +57,15 @@ struct Problem {
   // the result may use: edges the surrounding mesh already has, which the
   // patch would make non-manifold.
   std::vector<std::pair<int32_t, int32_t>> forbidden_edges;
+  // Several loops bounding one surface: empty (the vertices are one loop),
+  // or the sizes of consecutive loops, each at least 3, summing to the
+  // vertex count (loop i is closed from its last vertex to its first). The
+  // result is a surface of genus 0 with exactly these boundaries; each loop
+  // runs along it in its given direction (the surface on its left, seen
+  // from the side its normal points to), unless Options::reorient_loops
+  // lets the solver reverse loops after the first. Today 1 or 2 loops.
+  // (A default initializer keeps {vertices, ...} initializations short.)
+  std::vector<int32_t> loop_sizes = {};
 };
 
 // How Triangulate searches. A default-constructed Options is the
@@ -99,6 +108,12 @@ struct Problem {
 //                        it (e.g. 20000) where more cores pay off.
 //  delaunay_threads      Threads of that parallel insertion: 0 all cores, 1
 //                        sequential always. Default: 0.
+//  reorient_loops        Several loops: the solver may reverse loops after
+//                        the first when the surface is cheaper that way (it
+//                        tries both directions; Result::reversed_loops
+//                        names those reversed). false: every loop keeps its
+//                        given direction, as filling a hole with an island
+//                        of a mesh needs. Default: true.
 struct Options {
   SearchSpace space = SearchSpace::kAuto;
   DelaunayBackend delaunay = DelaunayBackend::kCgal;
@@ -111,6 +126,7 @@ struct Options {
   bool validate_output = false;
   int parallel_delaunay_min_points = std::numeric_limits<int>::max();
   int delaunay_threads = 0;
+  bool reorient_loops = true;
 };
 
 struct Stats {
@@ -133,7 +149,12 @@ struct Result {
   std::vector<Vec3> vertices;       // the input's, then any inserted ones
   std::vector<Triangle> triangles;  // oriented: polygon runs i -> i+1
   std::vector<int32_t> polygon;     // the loop (with inserted vertices)
-  std::vector<int32_t> inserted;    // indices of vertices edge protection added
+  // Several loops: their sizes in `polygon` (with inserted vertices), which
+  // lists each loop in the direction the surface runs along it; empty for
+  // one loop.
+  std::vector<int32_t> loop_sizes;
+  std::vector<int32_t> reversed_loops;  // loops run against their input
+  std::vector<int32_t> inserted;  // indices of vertices edge protection added
   std::vector<std::pair<int32_t, int32_t>> non_delaunay_edges;
   double total_cost = 0;
   MetricValues metric_costs;  // unweighted sum of each metric

@@ -20,7 +20,9 @@ struct MeshReport {
   int64_t non_manifold_edges = 0;    // edges on more than two triangles
   int64_t misoriented_edges = 0;     // interior edges used twice the same way
   bool boundary_is_polygon = false;  // boundary edges == polygon edges
-  bool disk = false;  // connected, manifold vertices, Euler characteristic 1
+  // Connected, manifold vertices, Euler characteristic 2 - loops: a disk for
+  // one loop, a sphere with that many holes for several.
+  bool disk = false;
   // Pairs of triangles meeting other than in a shared edge or vertex, decided
   // with exact predicates; -1 when not computed.
   int64_t intersecting_pairs = -1;
@@ -33,6 +35,13 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
                         const std::vector<int32_t>& polygon,
                         const std::vector<Triangle>& triangles,
                         bool check_intersections = true);
+// Several loops (Result::polygon cut by Result::loop_sizes): the boundary
+// must be exactly their edges, each loop's edges running its way in the
+// triangles (or every loop's the other way), on a surface of genus 0.
+MeshReport ValidateSurface(const std::vector<Vec3>& vertices,
+                           const std::vector<std::vector<int32_t>>& loops,
+                           const std::vector<Triangle>& triangles,
+                           bool check_intersections = true);
 
 // Number of triangle pairs that intersect other than along a shared edge or
 // at a shared vertex (exact predicates, box-intersection candidate pairs).

@@ -130,15 +130,20 @@ EdgeFindings CheckEdges(size_t vertex_count,
   return f;
 }
 
-// The boundary must be exactly the polygon's edges, all in one direction.
-void CheckBoundary(const std::vector<int32_t>& polygon,
+// The boundary must be exactly the loops' edges, all in their direction or
+// all against it.
+void CheckBoundary(const std::vector<std::vector<int32_t>>& loops,
                    std::vector<std::pair<int32_t, int32_t>> boundary,
                    MeshReport* r) {
-  const auto n = static_cast<int32_t>(polygon.size());
+  int32_t n = 0;
   std::vector<std::pair<int32_t, int32_t>> forward, backward;
-  for (int32_t i = 0; i < n; ++i) {
-    forward.emplace_back(polygon[i], polygon[(i + 1) % n]);
-    backward.emplace_back(polygon[(i + 1) % n], polygon[i]);
+  for (const std::vector<int32_t>& polygon : loops) {
+    const auto size = static_cast<int32_t>(polygon.size());
+    n += size;
+    for (int32_t i = 0; i < size; ++i) {
+      forward.emplace_back(polygon[i], polygon[(i + 1) % size]);
+      backward.emplace_back(polygon[(i + 1) % size], polygon[i]);
+    }
   }
   std::sort(boundary.begin(), boundary.end());
   std::sort(forward.begin(), forward.end());
@@ -153,9 +158,10 @@ void CheckBoundary(const std::vector<int32_t>& polygon,
 }
 
 // A disk is connected, has Euler characteristic V - E + F = 1, and the
-// triangles around every vertex form a single fan.
+// triangles around every vertex form a single fan; a sphere with k holes
+// has 2 - k.
 void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
-               const EdgeFindings& edges, UnionFind* components,
+               const EdgeFindings& edges, int64_t loops, UnionFind* components,
                MeshReport* r) {
   std::vector<int32_t> used;
   for (const Triangle& t : triangles) {
@@ -175,14 +181,15 @@ void CheckDisk(size_t vertex_count, const std::vector<Triangle>& triangles,
   }
   bool fans_ok = true;
   for (int32_t v : used) fans_ok &= edges.joins[v] >= degree[v] - 1;
-  r->disk = !triangles.empty() && component_count == 1 && euler == 1 &&
+  r->disk = !triangles.empty() && component_count == 1 && euler == 2 - loops &&
             fans_ok && r->non_manifold_edges == 0;
   if (!r->disk) {
-    NoteProblem("not a disk: " + std::to_string(component_count) +
-                    " components, Euler characteristic " +
-                    std::to_string(euler) +
-                    (fans_ok ? "" : ", a vertex with several fans"),
-                r);
+    NoteProblem(
+        std::string(loops == 1 ? "not a disk: " : "not a sphere with holes: ") +
+            std::to_string(component_count) +
+            " components, Euler characteristic " + std::to_string(euler) +
+            (fans_ok ? "" : ", a vertex with several fans"),
+        r);
   }
 }
 
@@ -236,7 +243,18 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
                         const std::vector<int32_t>& polygon,
                         const std::vector<Triangle>& triangles,
                         bool check_intersections) {
+  return ValidateSurface(vertices, {polygon}, triangles, check_intersections);
+}
+
+MeshReport ValidateSurface(const std::vector<Vec3>& vertices,
+                           const std::vector<std::vector<int32_t>>& loops,
+                           const std::vector<Triangle>& triangles,
+                           bool check_intersections) {
   MeshReport r;
+  std::vector<int32_t> polygon;
+  for (const std::vector<int32_t>& l : loops) {
+    polygon.insert(polygon.end(), l.begin(), l.end());
+  }
   r.indices_in_range =
       IndicesInRange(static_cast<int32_t>(vertices.size()), polygon, triangles);
   if (!r.indices_in_range) {
@@ -246,8 +264,9 @@ MeshReport ValidateMesh(const std::vector<Vec3>& vertices,
   CountDegenerate(vertices, triangles, &r);
   UnionFind components(triangles.size());
   EdgeFindings edges = CheckEdges(vertices.size(), triangles, &components, &r);
-  CheckBoundary(polygon, std::move(edges.boundary), &r);
-  CheckDisk(vertices.size(), triangles, edges, &components, &r);
+  CheckBoundary(loops, std::move(edges.boundary), &r);
+  CheckDisk(vertices.size(), triangles, edges,
+            static_cast<int64_t>(loops.size()), &components, &r);
   if (check_intersections && r.degenerate_triangles == 0) {
     r.intersecting_pairs = CountIntersectingPairs(vertices, triangles);
     if (r.intersecting_pairs > 0) {

@@ -24,6 +24,30 @@ Status CheckProblem(const Problem& problem, const Options& options) {
     return InvalidArgument("polygon has " + std::to_string(n) +
                            " vertices; at least 3 are needed");
   }
+  // The next vertex along each loop.
+  std::vector<int> next(n);
+  if (!problem.loop_sizes.empty()) {
+    int64_t sum = 0;
+    for (size_t l = 0; l < problem.loop_sizes.size(); ++l) {
+      const int32_t size = problem.loop_sizes[l];
+      if (size < 3) {
+        return InvalidArgument("loop " + std::to_string(l) + " has " +
+                               std::to_string(size) +
+                               " vertices; at least 3 are needed");
+      }
+      sum += size;
+    }
+    if (sum != n) {
+      return InvalidArgument("the loop sizes sum to " + std::to_string(sum) +
+                             ", but there are " + std::to_string(n) +
+                             " vertices");
+    }
+  }
+  for (int begin = 0, l = 0; begin < n; ++l) {
+    const int size = problem.loop_sizes.empty() ? n : problem.loop_sizes[l];
+    for (int i = 0; i < size; ++i) next[begin + i] = begin + (i + 1) % size;
+    begin += size;
+  }
   for (int i = 0; i < n; ++i) {
     if (!IsFinite(v[i])) {
       return InvalidArgument("vertex " + std::to_string(i) +
@@ -78,14 +102,14 @@ Status CheckProblem(const Problem& problem, const Options& options) {
                              " does not join two distinct vertices of "
                              "the polygon");
     }
-    if ((a + 1) % n == b || (b + 1) % n == a) {
+    if (next[a] == b || next[b] == a) {
       return InvalidArgument(name +
                              " is a polygon edge; every polygon edge "
                              "is part of the result");
     }
   }
   for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
+    const int j = next[i];
     if (v[i] == v[j]) {
       return InvalidArgument("vertices " + std::to_string(i) + " and " +
                              std::to_string(j) +

@@ -13,13 +13,13 @@
 namespace dot {
 namespace {
 
-// Positions i whose polygon edge (i, i+1 mod n) is on no face.
-std::vector<int32_t> MissingPolygonEdges(int32_t n,
+// Positions i whose polygon edge (i, next[i]) is on no face.
+std::vector<int32_t> MissingPolygonEdges(const std::vector<int32_t>& next,
                                          const std::vector<Triangle>& faces) {
   const EdgeIndex index = BuildEdgeIndex(faces);
   std::vector<int32_t> missing;
-  for (int32_t i = 0; i < n; ++i) {
-    if (!HasEdge(index, i, (i + 1) % n)) missing.push_back(i);
+  for (int32_t i = 0; i < static_cast<int32_t>(next.size()); ++i) {
+    if (!HasEdge(index, i, next[i])) missing.push_back(i);
   }
   return missing;
 }
@@ -80,8 +80,8 @@ Status Delaunay3dFaces(const Options& options, const Control& control,
         Faces(options, control, loop->Points(), faces, &stats->tetrahedra);
     if (!s.ok()) return s;
     if (!options.protect_edges) break;
-    const std::vector<int32_t> missing =
-        MissingPolygonEdges(loop->size(), *faces);
+    const std::vector<int32_t> next = loop->Successors();
+    const std::vector<int32_t> missing = MissingPolygonEdges(next, *faces);
     if (missing.empty()) break;
     if (loop->size() - input_size + static_cast<int32_t>(missing.size()) >
         max_inserted) {
@@ -90,15 +90,21 @@ Status Delaunay3dFaces(const Options& options, const Control& control,
                             std::to_string(max_inserted) + " vertices");
     }
     if (!ticker.Poll()) return ticker.status();
-    // Split every missing edge at its midpoint, walking the loop once.
+    // Split every missing edge at its midpoint, walking the loop(s) once.
     std::vector<int32_t> ids;
+    std::vector<int32_t> loop_of;  // position -> loop, for the new sizes
+    for (int32_t l = 0; l < loop->LoopCount(); ++l) {
+      loop_of.insert(loop_of.end(),
+                     loop->sizes.empty() ? loop->size() : loop->sizes[l], l);
+    }
     ids.reserve(loop->ids.size() + missing.size());
     size_t next_missing = 0;
     for (int32_t i = 0; i < loop->size(); ++i) {
       ids.push_back(loop->ids[i]);
       if (next_missing < missing.size() && missing[next_missing] == i) {
         ++next_missing;
-        const int32_t a = loop->ids[i], b = loop->ids[(i + 1) % loop->size()];
+        const int32_t a = loop->ids[i], b = loop->ids[next[i]];
+        if (!loop->sizes.empty()) ++loop->sizes[loop_of[i]];
         const Vec3 mid = 0.5 * (loop->vertices[a] + loop->vertices[b]);
         if (mid == loop->vertices[a] || mid == loop->vertices[b]) {
           return InvalidArgument("edge protection cannot make edge " +

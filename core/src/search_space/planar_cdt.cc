@@ -38,9 +38,9 @@ Point2 Project(const Vec3& p, int drop_axis) {
 // The first pair (lowest indices) of polygon edges that meet other than at a
 // shared endpoint, decided exactly; edge i runs from vertex i to i + 1.
 std::optional<std::pair<int32_t, int32_t>> FindCrossingEdges(
-    const std::vector<Point2>& p) {
+    const std::vector<Point2>& p, const std::vector<int32_t>& successor) {
   const auto n = static_cast<int32_t>(p.size());
-  auto next = [n](int32_t i) { return i + 1 == n ? 0 : i + 1; };
+  auto next = [&](int32_t i) { return successor[i]; };
   std::vector<Box> boxes;
   boxes.reserve(n);
   for (int32_t i = 0; i < n; ++i) {
@@ -74,18 +74,19 @@ std::optional<std::pair<int32_t, int32_t>> FindCrossingEdges(
 
 }  // namespace
 
-Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
+Status PlanarCdtTriangles(const std::vector<Vec3>& loop,
+                          const std::vector<int32_t>& next, int drop_axis,
                           std::vector<Triangle>* triangles) {
   const auto n = static_cast<int32_t>(loop.size());
   std::vector<Point2> p;
   p.reserve(n);
   for (const Vec3& v : loop) p.push_back(Project(v, drop_axis));
-  if (auto crossing = FindCrossingEdges(p)) {
+  if (auto crossing = FindCrossingEdges(p, next)) {
     const auto [i, j] = *crossing;
-    return InvalidArgument(
-        "planar polygon is self-intersecting: edge " + std::to_string(i) + "-" +
-        std::to_string((i + 1) % n) + " meets edge " + std::to_string(j) + "-" +
-        std::to_string((j + 1) % n));
+    return InvalidArgument("planar polygon is self-intersecting: edge " +
+                           std::to_string(i) + "-" + std::to_string(next[i]) +
+                           " meets edge " + std::to_string(j) + "-" +
+                           std::to_string(next[j]));
   }
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles(n);
@@ -95,7 +96,7 @@ Status PlanarCdtTriangles(const std::vector<Vec3>& loop, int drop_axis,
       handles[i]->info() = i;
     }
     for (int32_t i = 0; i < n; ++i) {
-      cdt.insert_constraint(handles[i], handles[(i + 1) % n]);
+      cdt.insert_constraint(handles[i], handles[next[i]]);
     }
   } catch (const std::exception& e) {
     return InvalidArgument(

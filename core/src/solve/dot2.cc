@@ -22,7 +22,15 @@
 namespace dot {
 namespace {
 
-// Smallest value of wd * theta + wsq * theta^2 over theta in [0, pi].
+struct InnerCandidate {
+  double b;
+  int32_t u;
+  int32_t rank;  // position in the edge's (canonically ordered) inner list
+  Vec3 normal;
+};
+
+}  // namespace
+
 double MinBending(BendingWeights w) {
   double lo = std::min(0.0, w.dihedral * kPi + w.squared_dihedral * kPi * kPi);
   if (w.squared_dihedral > 0) {
@@ -34,15 +42,6 @@ double MinBending(BendingWeights w) {
   }
   return lo;
 }
-
-struct InnerCandidate {
-  double b;
-  int32_t u;
-  int32_t rank;  // position in the edge's (canonically ordered) inner list
-  Vec3 normal;
-};
-
-}  // namespace
 
 Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
                  const std::vector<Vec3>& unit_normals,

@@ -39,6 +39,9 @@ struct BendingWeights {
   double dihedral = 0;          // weight of theta
   double squared_dihedral = 0;  // weight of theta^2
 };
+// Smallest value of dihedral * theta + squared_dihedral * theta^2 over theta
+// in [0, pi]: a lower bound on any bending term, for pruning.
+double MinBending(BendingWeights w);
 // `edge_normals`: empty, or per polygon position i the unit normal of the
 // surface face across the polygon edge i -> i+1 (zero: none); the bending
 // between it and the patch triangle on that edge is priced too.

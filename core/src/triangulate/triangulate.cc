@@ -24,6 +24,7 @@
 #include "solve/adjacency.h"
 #include "solve/prepared_space.h"
 #include "solve/solvers.h"
+#include "triangulate/loops.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -170,8 +171,8 @@ Status PrepareDelaunay(const PlaneFit& fit, bool planar, bool unit_normals,
   Status s;
   if (planar) {
     sp->space = SpaceUsed::kPlanarDelaunay2d;
-    s = PlanarCdtTriangles(sp->loop.Points(), fit.dominant_axis,
-                           &sp->triangles);
+    s = PlanarCdtTriangles(sp->loop.Points(), sp->loop.Successors(),
+                           fit.dominant_axis, &sp->triangles);
     stats->delaunay_triangles = static_cast<int64_t>(sp->triangles.size());
   } else {
     sp->space = SpaceUsed::kDelaunay3d;
@@ -259,7 +260,7 @@ Result Triangulate(const Problem& problem, const Options& options,
   if (!HasNonZeroWeight(weights)) weights[Metric::kArea] = 1;
   const MetricWeights work_weights = WorkWeights(weights, scale);
 
-  PolygonLoop loop{std::move(work), problem.normals, {}, {}};
+  PolygonLoop loop{std::move(work), problem.normals, {}, {}, {}};
   for (const Vec3& n : problem.edge_face_normals) {
     loop.edge_normals.push_back(Normalized(n));
   }
@@ -267,38 +268,46 @@ Result Triangulate(const Problem& problem, const Options& options,
   std::iota(loop.ids.begin(), loop.ids.end(), 0);
   r.stats.validate_ms = MsSince(t_start);
 
-  const bool bi = HasBiTriangleWeight(weights);
-  SpaceCache* cache = control.space_cache;
+  const bool several = problem.loop_sizes.size() > 1;
   std::shared_ptr<const PreparedSpace> space;
   Status s;
-  if (options.space != SearchSpace::kAll) {
-    const std::string key = cache ? SpaceCacheKey(problem, options) : "";
-    if (cache) space = cache->Find(key);
-    r.stats.cache_hit = space != nullptr;
-    if (space != nullptr) {
-      r.stats.tetrahedra = space->tetrahedra;
-      r.stats.delaunay_triangles = space->delaunay_triangles;
-    } else {
+  bool fallback = false;
+  if (several) {
+    loop.sizes = problem.loop_sizes;
+    s = SolveLoops(fit, r.planar, work_weights, problem, options, control,
+                   &loop, &r);
+  } else {
+    const bool bi = HasBiTriangleWeight(weights);
+    SpaceCache* cache = control.space_cache;
+    if (options.space != SearchSpace::kAll) {
+      const std::string key = cache ? SpaceCacheKey(problem, options) : "";
+      if (cache) space = cache->Find(key);
+      r.stats.cache_hit = space != nullptr;
+      if (space != nullptr) {
+        r.stats.tetrahedra = space->tetrahedra;
+        r.stats.delaunay_triangles = space->delaunay_triangles;
+      } else {
+        auto fresh = std::make_shared<PreparedSpace>();
+        fresh->loop = loop;
+        s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi,
+                            problem.forbidden_edges, options, control,
+                            fresh.get(), &r.stats);
+        if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());
+        space = std::move(fresh);
+      }
+      if (s.ok()) s = Solve(*space, work_weights, options, control, &r);
+    }
+    fallback = options.space == SearchSpace::kAuto &&
+               s.code == StatusCode::kNoTriangulation &&
+               loop.size() <= options.all_space_max_vertices;
+    if (options.space == SearchSpace::kAll || fallback) {
       auto fresh = std::make_shared<PreparedSpace>();
       fresh->loop = loop;
-      s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi,
-                          problem.forbidden_edges, options, control,
-                          fresh.get(), &r.stats);
-      if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());
+      s = PrepareAll(work_weights, problem.forbidden_edges, options, control,
+                     fresh.get(), &r.stats);
+      if (s.ok()) s = Solve(*fresh, work_weights, options, control, &r);
       space = std::move(fresh);
     }
-    if (s.ok()) s = Solve(*space, work_weights, options, control, &r);
-  }
-  const bool fallback = options.space == SearchSpace::kAuto &&
-                        s.code == StatusCode::kNoTriangulation &&
-                        loop.size() <= options.all_space_max_vertices;
-  if (options.space == SearchSpace::kAll || fallback) {
-    auto fresh = std::make_shared<PreparedSpace>();
-    fresh->loop = loop;
-    s = PrepareAll(work_weights, problem.forbidden_edges, options, control,
-                   fresh.get(), &r.stats);
-    if (s.ok()) s = Solve(*fresh, work_weights, options, control, &r);
-    space = std::move(fresh);
   }
   r.status = s;
   // The loop with any inserted vertices; copied once, since a cached space
@@ -321,6 +330,7 @@ Result Triangulate(const Problem& problem, const Options& options,
     }
   }
   r.polygon = solved.ids;
+  if (several) r.loop_sizes = solved.sizes;
   for (auto id = static_cast<int32_t>(problem.vertices.size());
        id < static_cast<int32_t>(r.vertices.size()); ++id) {
     r.inserted.push_back(id);

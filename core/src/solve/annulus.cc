@@ -1,0 +1,387 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "solve/annulus.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "solve/loop_ears.h"
+#include "solve/solvers.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+// Sides per loop so far, each saturating at 3: state c = 4 * on_a + on_b.
+constexpr int kCounts = 16;
+constexpr int kEnough = 15;  // at least 3 sides on each loop
+int Counted(int c, bool on_a) {
+  const int ca = c / 4, cb = c % 4;
+  return on_a ? std::min(ca + 1, 3) * 4 + cb : ca * 4 + std::min(cb + 1, 3);
+}
+
+// A cross triangle used with one of its sides on a loop. A-arcs advance
+// along A at a fixed vertex of B, B-arcs along B at a fixed vertex of A.
+struct Arc {
+  int32_t from, to;  // nodes
+  bool on_a;
+  int32_t advance;
+  Triangle tri;  // oriented
+  Vec3 normal;
+  double cost;                   // the triangle's weight and its ear
+  int32_t chord_from, chord_to;  // positions: the side on the loop
+};
+
+// A node: an edge between the loops, as local indices on A and B.
+struct Node {
+  int32_t x, y;
+};
+
+// Per-start pass over the unrolled graph; see annulus.h.
+class StripPass {
+ public:
+  StripPass(const std::vector<Node>& nodes, const std::vector<Arc>& arcs,
+            const std::vector<int32_t>& out_begin,
+            const std::vector<int32_t>& out,
+            const std::vector<int32_t>& in_begin,
+            const std::vector<int32_t>& in, int32_t na, int32_t nb,
+            const SurfaceCosts& costs)
+      : nodes_(nodes),
+        arcs_(arcs),
+        out_begin_(out_begin),
+        out_(out),
+        in_begin_(in_begin),
+        in_(in),
+        na_(na),
+        nb_(nb),
+        costs_(costs),
+        prune_(costs.NonNegative()) {}
+
+  // Best cycle from start node `s` (DOT2: whose first arc is `first`) below
+  // `*best`; on success replaces *best and *path (arcs in cycle order).
+  bool Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
+           std::vector<int32_t>* path, int64_t* states, bool* stopped);
+
+ private:
+  struct Pred {
+    int32_t arc = -1;  // DOT1: arc into the node; DOT2: the arc before
+    int8_t count = 0;
+  };
+  // Unrolled coordinates of node v for start s.
+  std::pair<int32_t, int32_t> Coords(int32_t s, int32_t v) const {
+    const Node& st = nodes_[s];
+    const Node& n = nodes_[v];
+    if (v == s) return {0, 0};
+    const int32_t ru = n.x == st.x ? na_ : (n.x - st.x + na_) % na_;
+    const int32_t rv = n.y == st.y ? 0 : (st.y - n.y + nb_) % nb_;
+    return {ru, rv};
+  }
+  // Whether arc may leave node (ru, rv) for start s; sets *sink.
+  bool Allowed(int32_t s, const Arc& arc, int32_t ru, int32_t rv,
+               bool* sink) const {
+    *sink = arc.to == s;
+    if (!arc.on_a && rv == 0 && ru < na_ - nodes_[s].x) {
+      return false;  // the first B-side only after A's last edge
+    }
+    const int32_t eu = arc.on_a ? ru + arc.advance : ru;
+    const int32_t ev = arc.on_a ? rv : rv + arc.advance;
+    if (*sink) return !arc.on_a && eu == na_ && ev == nb_;
+    const auto [tu, tv] = Coords(s, arc.to);
+    return tu == eu && tv == ev;
+  }
+
+  const std::vector<Node>& nodes_;
+  const std::vector<Arc>& arcs_;
+  const std::vector<int32_t>&out_begin_, &out_, &in_begin_, &in_;
+  const int32_t na_, nb_;
+  const SurfaceCosts& costs_;
+  const bool prune_;
+  std::vector<double> dist_;
+  std::vector<Pred> pred_;
+  std::vector<int32_t> order_;
+  std::vector<int64_t> key_;
+};
+
+bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
+                    std::vector<int32_t>* path, int64_t* states,
+                    bool* stopped) {
+  const bool bi = first >= 0;
+  const size_t slots = bi ? arcs_.size() : nodes_.size();
+  dist_.assign(slots * kCounts, kInf);
+  pred_.assign(slots * kCounts, Pred{});
+  const auto nodes = static_cast<int32_t>(nodes_.size());
+  key_.resize(nodes);
+  order_.resize(nodes);
+  for (int32_t v = 0; v < nodes; ++v) {
+    const auto [ru, rv] = Coords(s, v);
+    key_[v] = int64_t{ru} * (nb_ + 1) + rv;
+    order_[v] = v;
+  }
+  std::sort(order_.begin(), order_.end(), [&](int32_t a, int32_t b) {
+    return key_[a] < key_[b] || (key_[a] == key_[b] && a < b);
+  });
+  double found = *best;
+  int32_t last_arc = -1, last_from = -1;  // the arc into the sink
+  int last_count = 0;
+
+  if (bi) {
+    const Arc& f = arcs_[first];
+    bool sink = false;
+    if (f.from != s || !f.on_a || !Allowed(s, f, 0, 0, &sink) || sink) {
+      return false;
+    }
+    dist_[static_cast<size_t>(first) * kCounts + Counted(0, true)] = f.cost;
+  } else {
+    dist_[static_cast<size_t>(s) * kCounts] = 0;
+  }
+
+  for (int32_t v : order_) {
+    if (!ticker->Tick()) {
+      *stopped = true;
+      return false;
+    }
+    if (bi && v == s) continue;  // the first arc is fixed
+    const auto [ru, rv] = Coords(s, v);
+    for (int32_t i = out_begin_[v]; i < out_begin_[v + 1]; ++i) {
+      const int32_t b = out_[i];
+      const Arc& arc = arcs_[b];
+      bool sink = false;
+      if (!Allowed(s, arc, ru, rv, &sink)) continue;
+      // The states the arc continues: the node's (DOT1), or those of each
+      // arc into the node (DOT2, which prices the bend between them).
+      const int32_t ib = bi ? in_begin_[v] : 0, ie = bi ? in_begin_[v + 1] : 1;
+      for (int32_t j = ib; j < ie; ++j) {
+        const int32_t a = bi ? in_[j] : -1;
+        const size_t from_slot = bi ? static_cast<size_t>(a) : v;
+        const double bend = bi ? costs_.Bend(arcs_[a].normal, arc.normal) : 0;
+        for (int c = 0; c < kCounts; ++c) {
+          const double d = dist_[from_slot * kCounts + c];
+          if (d == kInf) continue;
+          ++*states;
+          double value = d + bend + arc.cost;
+          if (prune_ && value >= found) continue;
+          const int next = Counted(c, arc.on_a);
+          if (sink) {
+            if (bi) value += costs_.Bend(arc.normal, arcs_[first].normal);
+            if (next == kEnough && value < found) {
+              found = value;
+              last_arc = b;
+              last_from = bi ? a : v;
+              last_count = c;
+            }
+            continue;
+          }
+          const size_t to =
+              (bi ? static_cast<size_t>(b) : arc.to) * kCounts + next;
+          if (value < dist_[to]) {
+            dist_[to] = value;
+            pred_[to] = {bi ? a : b, static_cast<int8_t>(c)};
+          }
+        }
+      }
+    }
+  }
+  if (last_arc < 0) return false;
+  *best = found;
+  path->assign(1, last_arc);
+  if (bi) {
+    // Back through the arcs before the last, to the fixed first arc.
+    int32_t a = last_from;
+    int c = last_count;
+    while (a >= 0) {
+      path->push_back(a);
+      const Pred p = pred_[static_cast<size_t>(a) * kCounts + c];
+      a = p.arc;
+      c = p.count;
+    }
+  } else {
+    int32_t v = last_from;
+    int c = last_count;
+    while (v != s || c != 0) {
+      const Pred p = pred_[static_cast<size_t>(v) * kCounts + c];
+      path->push_back(p.arc);
+      v = arcs_[p.arc].from;
+      c = p.count;
+    }
+  }
+  std::reverse(path->begin(), path->end());
+  return true;
+}
+
+}  // namespace
+
+Status SolveAnnulus(const std::vector<int32_t>& loop_a,
+                    const std::vector<int32_t>& loop_b,
+                    const std::vector<Triangle>& candidates,
+                    const SurfaceCosts& costs, int64_t memory_budget_bytes,
+                    const Control& control, AnnulusSolution* out) {
+  const auto na = static_cast<int32_t>(loop_a.size());
+  const auto nb = static_cast<int32_t>(loop_b.size());
+  std::vector<int32_t> local(costs.points.size(), -1);
+  std::vector<int8_t> side(costs.points.size(), -1);  // 0: A, 1: B
+  for (int32_t i = 0; i < na; ++i) {
+    local[loop_a[i]] = i;
+    side[loop_a[i]] = 0;
+  }
+  for (int32_t i = 0; i < nb; ++i) {
+    local[loop_b[i]] = i;
+    side[loop_b[i]] = 1;
+  }
+  RunTicker ticker(control, Stage::kDynamicProgram);
+
+  // Sort the candidates into ears of A, ears of B, and cross triangles.
+  std::vector<Triangle> on_a, on_b, cross;
+  for (const Triangle& t : candidates) {
+    const int sides = side[t[0]] + side[t[1]] + side[t[2]];
+    if (side[t[0]] < 0 || side[t[1]] < 0 || side[t[2]] < 0) continue;
+    (sides == 0 ? on_a : sides == 3 ? on_b : cross).push_back(t);
+  }
+  const int64_t estimate = static_cast<int64_t>(candidates.size()) * 2 *
+                               (sizeof(Arc) + kCounts * (sizeof(double) + 8)) +
+                           static_cast<int64_t>(candidates.size()) * 3 * 96;
+  if (estimate > memory_budget_bytes) {
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "estimated memory " + std::to_string(estimate >> 20) +
+                          " MiB for " + std::to_string(candidates.size()) +
+                          " candidate triangles exceeds the budget of " +
+                          std::to_string(memory_budget_bytes >> 20) + " MiB");
+  }
+  LoopEars ears_a, ears_b;
+  if (Status s = ears_a.Build(loop_a, on_a, costs, control); !s.ok()) return s;
+  if (Status s = ears_b.Build(loop_b, on_b, costs, control); !s.ok()) return s;
+
+  // Nodes: the edges between the loops, numbered in (x, y) order.
+  std::vector<int64_t> node_keys;
+  auto node_key = [&](int32_t pa, int32_t pb) {
+    return int64_t{local[pa]} * nb + local[pb];
+  };
+  for (const Triangle& t : cross) {
+    for (int k = 0; k < 3; ++k) {
+      const int32_t p = t[k], q = t[(k + 1) % 3];
+      if (side[p] != side[q]) {
+        node_keys.push_back(side[p] == 0 ? node_key(p, q) : node_key(q, p));
+      }
+    }
+  }
+  std::sort(node_keys.begin(), node_keys.end());
+  node_keys.erase(std::unique(node_keys.begin(), node_keys.end()),
+                  node_keys.end());
+  std::vector<Node> nodes;
+  nodes.reserve(node_keys.size());
+  for (int64_t k : node_keys) {
+    nodes.push_back(
+        {static_cast<int32_t>(k / nb), static_cast<int32_t>(k % nb)});
+  }
+  auto node_of = [&](int32_t pa, int32_t pb) {
+    return static_cast<int32_t>(
+        std::lower_bound(node_keys.begin(), node_keys.end(), node_key(pa, pb)) -
+        node_keys.begin());
+  };
+
+  // Arcs: each cross triangle with either of its two same-loop corners
+  // first, when its ear exists.
+  std::vector<Arc> arcs;
+  for (const Triangle& t : cross) {
+    if (!ticker.Tick()) return ticker.status();
+    const bool two_on_a = side[t[0]] + side[t[1]] + side[t[2]] == 1;
+    std::array<int32_t, 2> pair{};
+    int32_t other = -1, k = 0;
+    for (int32_t p : t) {
+      if ((side[p] == 0) == two_on_a) {
+        pair[k++] = p;
+      } else {
+        other = p;
+      }
+    }
+    const int32_t n = two_on_a ? na : nb;
+    const LoopEars& ears = two_on_a ? ears_a : ears_b;
+    for (int flip = 0; flip < 2; ++flip) {
+      const int32_t f = pair[flip], g = pair[1 - flip];  // chord f -> g
+      const int32_t advance = (local[g] - local[f] + n) % n;
+      if (advance < 1 || advance > n - 2) continue;
+      Arc arc;
+      arc.on_a = two_on_a;
+      arc.advance = advance;
+      arc.tri = {f, g, other};
+      arc.normal = costs.Normal(arc.tri);
+      const double ear = ears.Cost(f, g, arc.normal);
+      if (ear == kInf) continue;
+      arc.cost = costs.Weight(arc.tri) + ear;
+      arc.chord_from = f;
+      arc.chord_to = g;
+      // A-sides move from (f, other) to (g, other); B is walked against
+      // its direction, from (other, g) to (other, f).
+      arc.from = two_on_a ? node_of(f, other) : node_of(other, g);
+      arc.to = two_on_a ? node_of(g, other) : node_of(other, f);
+      arcs.push_back(arc);
+    }
+  }
+  const auto node_count = static_cast<int32_t>(nodes.size());
+  std::vector<int32_t> out_begin(node_count + 1, 0),
+      in_begin(node_count + 1, 0);
+  for (const Arc& a : arcs) {
+    ++out_begin[a.from + 1];
+    ++in_begin[a.to + 1];
+  }
+  std::partial_sum(out_begin.begin(), out_begin.end(), out_begin.begin());
+  std::partial_sum(in_begin.begin(), in_begin.end(), in_begin.begin());
+  std::vector<int32_t> out_arcs(arcs.size()), in_arcs(arcs.size());
+  {
+    std::vector<int32_t> o(out_begin.begin(), out_begin.end() - 1),
+        i(in_begin.begin(), in_begin.end() - 1);
+    for (int32_t id = 0; id < static_cast<int32_t>(arcs.size()); ++id) {
+      out_arcs[o[arcs[id].from]++] = id;
+      in_arcs[i[arcs[id].to]++] = id;
+    }
+  }
+
+  // Starts: nodes (a, q), a != 0, where q has an A-side across A's last edge.
+  std::vector<char> crosses_end(nb, 0);
+  for (const Arc& a : arcs) {
+    if (a.on_a && nodes[a.from].x + a.advance >= na) {
+      crosses_end[nodes[a.from].y] = 1;
+    }
+  }
+  StripPass pass(nodes, arcs, out_begin, out_arcs, in_begin, in_arcs, na, nb,
+                 costs);
+  double best = kInf;
+  std::vector<int32_t> path, candidate_path;
+  bool stopped = false;
+  for (int32_t s = 0; s < node_count; ++s) {
+    if (nodes[s].x == 0 || !crosses_end[nodes[s].y]) continue;
+    if (costs.bi()) {
+      for (int32_t i = out_begin[s]; i < out_begin[s + 1]; ++i) {
+        if (pass.Run(s, out_arcs[i], &ticker, &best, &candidate_path,
+                     &out->states, &stopped)) {
+          path = candidate_path;
+        }
+        if (stopped) return ticker.status();
+      }
+    } else {
+      if (pass.Run(s, -1, &ticker, &best, &candidate_path, &out->states,
+                   &stopped)) {
+        path = candidate_path;
+      }
+      if (stopped) return ticker.status();
+    }
+  }
+  out->table_bytes =
+      ears_a.Bytes() + ears_b.Bytes() +
+      static_cast<int64_t>(arcs.size() * (sizeof(Arc) + 8)) +
+      static_cast<int64_t>((costs.bi() ? arcs.size() : nodes.size()) * kCounts *
+                           (sizeof(double) + 8));
+  if (path.empty()) return MakeStatus(StatusCode::kNoTriangulation, "");
+  out->cost = best;
+  out->triangles.clear();
+  for (int32_t id : path) {
+    const Arc& a = arcs[id];
+    out->triangles.push_back(a.tri);
+    (a.on_a ? ears_a : ears_b)
+        .Collect(a.chord_from, a.chord_to, a.normal, &out->triangles);
+  }
+  return OkStatus();
+}
+
+}  // namespace dot
