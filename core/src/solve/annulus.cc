@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -39,7 +40,44 @@ struct Node {
   int32_t x, y;
 };
 
-// Per-start pass over the unrolled graph; see annulus.h.
+// Lower bounds on what covering an interval of a loop's edges costs: each
+// edge gets the least cost per edge of any side covering it, so any set of
+// sides covering an interval costs at least the sum over its edges (when no
+// term is negative). With the two loops' sums this is an A* bound.
+class CoverBound {
+ public:
+  void Init(int32_t n) {
+    per_edge_.assign(n, kInf);
+    prefix_.clear();
+  }
+  void Add(int32_t first_edge, int32_t advance, double cost) {
+    const auto n = static_cast<int32_t>(per_edge_.size());
+    const double per = cost / advance;
+    for (int32_t i = 0; i < advance; ++i) {
+      double& e = per_edge_[(first_edge + i) % n];
+      e = std::min(e, per);
+    }
+  }
+  void Finish() {
+    prefix_.assign(2 * per_edge_.size() + 1, 0);
+    for (size_t i = 0; i + 1 < prefix_.size(); ++i) {
+      prefix_[i + 1] = prefix_[i] + per_edge_[i % per_edge_.size()];
+    }
+  }
+  // Edges first_edge, ..., first_edge + count - 1 (cyclic).
+  double Sum(int32_t first_edge, int32_t count) const {
+    return prefix_[first_edge + count] - prefix_[first_edge];
+  }
+
+ private:
+  std::vector<double> per_edge_;
+  std::vector<double> prefix_;
+};
+
+// Per-start pass over the unrolled graph; see annulus.h. Nodes are taken in
+// order of their unrolled coordinates from a heap, so a pass costs what it
+// reaches, and with non-negative terms states are pruned by the best cycle
+// so far plus the cover bounds of what remains.
 class StripPass {
  public:
   StripPass(const std::vector<Node>& nodes, const std::vector<Arc>& arcs,
@@ -47,6 +85,7 @@ class StripPass {
             const std::vector<int32_t>& out,
             const std::vector<int32_t>& in_begin,
             const std::vector<int32_t>& in, int32_t na, int32_t nb,
+            const CoverBound& bound_a, const CoverBound& bound_b,
             const SurfaceCosts& costs)
       : nodes_(nodes),
         arcs_(arcs),
@@ -56,8 +95,24 @@ class StripPass {
         in_(in),
         na_(na),
         nb_(nb),
+        bound_a_(bound_a),
+        bound_b_(bound_b),
         costs_(costs),
-        prune_(costs.NonNegative()) {}
+        prune_(costs.NonNegative()),
+        bi_(costs.bi()) {
+    const size_t slots = bi_ ? arcs.size() : nodes.size();
+    dist_.assign(slots * kCounts, kInf);
+    pred_.resize(slots * kCounts);
+    queued_.assign(nodes.size(), 0);
+  }
+
+  // What any cycle from start s whose A-side across A's last edge costs at
+  // least `cut` costs at least (0 unless prunable): that side bounds the A
+  // edges it covers, so the better of it and A's cover bound, plus B's.
+  double StartBound(int32_t s, double cut) const {
+    if (!prune_) return 0;
+    return std::max(cut, bound_a_.Sum(0, na_)) + bound_b_.Sum(0, nb_);
+  }
 
   // Best cycle from start node `s` (DOT2: whose first arc is `first`) below
   // `*best`; on success replaces *best and *path (arcs in cycle order).
@@ -78,106 +133,140 @@ class StripPass {
     const int32_t rv = n.y == st.y ? 0 : (st.y - n.y + nb_) % nb_;
     return {ru, rv};
   }
-  // Whether arc may leave node (ru, rv) for start s; sets *sink.
-  bool Allowed(int32_t s, const Arc& arc, int32_t ru, int32_t rv,
-               bool* sink) const {
+  // Lower bound on the rest of a cycle from start s at (ru, rv): A's edges
+  // from a + ru on, and B's (walked backwards from q) still to cover.
+  double Remaining(int32_t s, int32_t ru, int32_t rv) const {
+    const Node& st = nodes_[s];
+    return bound_a_.Sum((st.x + ru) % na_, na_ - ru) +
+           bound_b_.Sum(st.y, nb_ - rv);
+  }
+  // Whether arc may leave node (ru, rv) for start s; sets *sink and the
+  // coordinates it reaches.
+  bool Allowed(int32_t s, const Arc& arc, int32_t ru, int32_t rv, bool* sink,
+               int32_t* eu, int32_t* ev) const {
     *sink = arc.to == s;
     if (!arc.on_a && rv == 0 && ru < na_ - nodes_[s].x) {
       return false;  // the first B-side only after A's last edge
     }
-    const int32_t eu = arc.on_a ? ru + arc.advance : ru;
-    const int32_t ev = arc.on_a ? rv : rv + arc.advance;
-    if (*sink) return !arc.on_a && eu == na_ && ev == nb_;
+    *eu = arc.on_a ? ru + arc.advance : ru;
+    *ev = arc.on_a ? rv : rv + arc.advance;
+    if (*sink) return !arc.on_a && *eu == na_ && *ev == nb_;
     const auto [tu, tv] = Coords(s, arc.to);
-    return tu == eu && tv == ev;
+    return tu == *eu && tv == *ev;
+  }
+  void Queue(int32_t s, int32_t v) {
+    if (queued_[v]) return;
+    queued_[v] = 1;
+    queued_list_.push_back(v);
+    const auto [ru, rv] = Coords(s, v);
+    heap_.push_back({int64_t{ru} * (nb_ + 1) + rv, v});
+    std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  }
+  void Set(size_t slot, double value, Pred pred) {
+    if (dist_[slot] == kInf) touched_.push_back(slot);
+    dist_[slot] = value;
+    pred_[slot] = pred;
+  }
+  void Reset() {
+    for (size_t slot : touched_) dist_[slot] = kInf;
+    for (int32_t v : queued_list_) queued_[v] = 0;
+    touched_.clear();
+    queued_list_.clear();
+    heap_.clear();
   }
 
   const std::vector<Node>& nodes_;
   const std::vector<Arc>& arcs_;
   const std::vector<int32_t>&out_begin_, &out_, &in_begin_, &in_;
   const int32_t na_, nb_;
+  const CoverBound &bound_a_, &bound_b_;
   const SurfaceCosts& costs_;
-  const bool prune_;
+  const bool prune_, bi_;
   std::vector<double> dist_;
   std::vector<Pred> pred_;
-  std::vector<int32_t> order_;
-  std::vector<int64_t> key_;
+  std::vector<size_t> touched_;
+  std::vector<char> queued_;
+  std::vector<int32_t> queued_list_;
+  std::vector<std::pair<int64_t, int32_t>> heap_;
 };
 
 bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
                     std::vector<int32_t>* path, int64_t* states,
                     bool* stopped) {
-  const bool bi = first >= 0;
-  const size_t slots = bi ? arcs_.size() : nodes_.size();
-  dist_.assign(slots * kCounts, kInf);
-  pred_.assign(slots * kCounts, Pred{});
-  const auto nodes = static_cast<int32_t>(nodes_.size());
-  key_.resize(nodes);
-  order_.resize(nodes);
-  for (int32_t v = 0; v < nodes; ++v) {
-    const auto [ru, rv] = Coords(s, v);
-    key_[v] = int64_t{ru} * (nb_ + 1) + rv;
-    order_[v] = v;
-  }
-  std::sort(order_.begin(), order_.end(), [&](int32_t a, int32_t b) {
-    return key_[a] < key_[b] || (key_[a] == key_[b] && a < b);
-  });
+  Reset();
   double found = *best;
   int32_t last_arc = -1, last_from = -1;  // the arc into the sink
   int last_count = 0;
 
-  if (bi) {
+  if (bi_) {
     const Arc& f = arcs_[first];
     bool sink = false;
-    if (f.from != s || !f.on_a || !Allowed(s, f, 0, 0, &sink) || sink) {
+    int32_t eu = 0, ev = 0;
+    if (f.from != s || !f.on_a || !Allowed(s, f, 0, 0, &sink, &eu, &ev) ||
+        sink) {
       return false;
     }
-    dist_[static_cast<size_t>(first) * kCounts + Counted(0, true)] = f.cost;
+    if (prune_ && f.cost + Remaining(s, eu, ev) >= found) return false;
+    Set(static_cast<size_t>(first) * kCounts + Counted(0, true), f.cost, {});
+    Queue(s, f.to);
   } else {
-    dist_[static_cast<size_t>(s) * kCounts] = 0;
+    Set(static_cast<size_t>(s) * kCounts, 0, {});
+    Queue(s, s);
   }
 
-  for (int32_t v : order_) {
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+    const int32_t v = heap_.back().second;
+    heap_.pop_back();
     if (!ticker->Tick()) {
       *stopped = true;
       return false;
     }
-    if (bi && v == s) continue;  // the first arc is fixed
     const auto [ru, rv] = Coords(s, v);
     for (int32_t i = out_begin_[v]; i < out_begin_[v + 1]; ++i) {
       const int32_t b = out_[i];
       const Arc& arc = arcs_[b];
       bool sink = false;
-      if (!Allowed(s, arc, ru, rv, &sink)) continue;
+      int32_t eu = 0, ev = 0;
+      if (!Allowed(s, arc, ru, rv, &sink, &eu, &ev)) continue;
+      const double rest = prune_ && !sink ? Remaining(s, eu, ev) : 0;
       // The states the arc continues: the node's (DOT1), or those of each
       // arc into the node (DOT2, which prices the bend between them).
-      const int32_t ib = bi ? in_begin_[v] : 0, ie = bi ? in_begin_[v + 1] : 1;
+      const int32_t ib = bi_ ? in_begin_[v] : 0,
+                    ie = bi_ ? in_begin_[v + 1] : 1;
       for (int32_t j = ib; j < ie; ++j) {
-        const int32_t a = bi ? in_[j] : -1;
-        const size_t from_slot = bi ? static_cast<size_t>(a) : v;
-        const double bend = bi ? costs_.Bend(arcs_[a].normal, arc.normal) : 0;
+        const int32_t a = bi_ ? in_[j] : -1;
+        const size_t from_slot = bi_ ? static_cast<size_t>(a) : v;
+        if (bi_ && dist_[from_slot * kCounts + kCounts - 1] == kInf) {
+          bool any = false;
+          for (int c = 0; c < kCounts && !any; ++c) {
+            any = dist_[from_slot * kCounts + c] != kInf;
+          }
+          if (!any) continue;
+        }
+        const double bend = bi_ ? costs_.Bend(arcs_[a].normal, arc.normal) : 0;
         for (int c = 0; c < kCounts; ++c) {
           const double d = dist_[from_slot * kCounts + c];
           if (d == kInf) continue;
           ++*states;
           double value = d + bend + arc.cost;
-          if (prune_ && value >= found) continue;
+          if (prune_ && value + rest >= found) continue;
           const int next = Counted(c, arc.on_a);
           if (sink) {
-            if (bi) value += costs_.Bend(arc.normal, arcs_[first].normal);
+            if (bi_) value += costs_.Bend(arc.normal, arcs_[first].normal);
             if (next == kEnough && value < found) {
               found = value;
               last_arc = b;
-              last_from = bi ? a : v;
+              last_from = bi_ ? a : v;
               last_count = c;
             }
             continue;
           }
           const size_t to =
-              (bi ? static_cast<size_t>(b) : arc.to) * kCounts + next;
+              (bi_ ? static_cast<size_t>(b) : arc.to) * kCounts + next;
           if (value < dist_[to]) {
-            dist_[to] = value;
-            pred_[to] = {bi ? a : b, static_cast<int8_t>(c)};
+            Set(to, value, {bi_ ? a : b, static_cast<int8_t>(c)});
+            Queue(s, arc.to);
           }
         }
       }
@@ -186,7 +275,7 @@ bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
   if (last_arc < 0) return false;
   *best = found;
   path->assign(1, last_arc);
-  if (bi) {
+  if (bi_) {
     // Back through the arcs before the last, to the fixed first arc.
     int32_t a = last_from;
     int c = last_count;
@@ -337,20 +426,43 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
     }
   }
 
-  // Starts: nodes (a, q), a != 0, where q has an A-side across A's last edge.
-  std::vector<char> crosses_end(nb, 0);
+  // Cover bounds (see CoverBound), and per vertex q of B the least cost of
+  // an A-side at q across A's last edge: every cycle from a start at q has
+  // one.
+  CoverBound bound_a, bound_b;
+  bound_a.Init(na);
+  bound_b.Init(nb);
+  std::vector<double> cut_cost(nb, kInf);
   for (const Arc& a : arcs) {
-    if (a.on_a && nodes[a.from].x + a.advance >= na) {
-      crosses_end[nodes[a.from].y] = 1;
+    const Node& from = nodes[a.from];
+    if (a.on_a) {
+      bound_a.Add(from.x, a.advance, a.cost);
+      if (from.x + a.advance >= na) {
+        cut_cost[from.y] = std::min(cut_cost[from.y], a.cost);
+      }
+    } else {
+      // From (x, p') to (x, p): B's edges p .. p' - 1.
+      bound_b.Add(nodes[a.to].y, a.advance, a.cost);
     }
   }
+  bound_a.Finish();
+  bound_b.Finish();
   StripPass pass(nodes, arcs, out_begin, out_arcs, in_begin, in_arcs, na, nb,
-                 costs);
+                 bound_a, bound_b, costs);
+  // Starts: nodes (a, q), a != 0, where q has an A-side across A's last
+  // edge; likeliest first, so the best cycle so far prunes the rest.
+  std::vector<std::pair<double, int32_t>> starts;
+  for (int32_t s = 0; s < node_count; ++s) {
+    if (nodes[s].x == 0 || cut_cost[nodes[s].y] == kInf) continue;
+    starts.emplace_back(pass.StartBound(s, cut_cost[nodes[s].y]), s);
+  }
+  std::sort(starts.begin(), starts.end());
+  const bool prune = costs.NonNegative();
   double best = kInf;
   std::vector<int32_t> path, candidate_path;
   bool stopped = false;
-  for (int32_t s = 0; s < node_count; ++s) {
-    if (nodes[s].x == 0 || !crosses_end[nodes[s].y]) continue;
+  for (const auto& [bound, s] : starts) {
+    if (prune && bound >= best) break;
     if (costs.bi()) {
       for (int32_t i = out_begin[s]; i < out_begin[s + 1]; ++i) {
         if (pass.Run(s, out_arcs[i], &ticker, &best, &candidate_path,
