@@ -45,7 +45,10 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
   auto flags = std::make_shared<Flags>();
   CLI::App* cmd = app.add_subcommand(
       "triangulate",
-      "Triangulate polygon files (x y z lines, or OBJ v/l) into meshes.\n"
+      "Triangulate polygon files (x y z lines, or OBJ v/l) into meshes. A\n"
+      "file with several loops (blocks of lines separated by blank lines, or\n"
+      "'l' lines closing into several loops) becomes one surface joining\n"
+      "them (today 2 loops).\n"
       "Example: dotctl triangulate hole.xyz -o patch.obj --squared-dihedral 1");
   cmd->add_option("files", flags->inputs,
                   "polygon files or directories; - reads one polygon from "

@@ -117,8 +117,12 @@ std::string DescribeOutcome(const CallOutcome& o) {
   }
   char cost[64];
   std::snprintf(cost, sizeof cost, "%.6g", m.total_cost());
-  s << "ok: " << m.triangle_count() << " triangles, " << m.solver() << " over "
-    << m.search_space_used();
+  s << "ok: " << m.triangle_count() << " triangles";
+  if (m.loop_sizes_size() > 1) {
+    s << " joining " << m.loop_sizes_size() << " loops";
+    for (uint32_t l : m.reversed_loops()) s << " (loop " << l << " reversed)";
+  }
+  s << ", " << m.solver() << " over " << m.search_space_used();
   if (!m.delaunay_backend().empty()) s << " (" << m.delaunay_backend() << ")";
   s << ", cost " << cost;
   if (m.cache_hit()) s << ", search space from cache";

@@ -48,6 +48,10 @@ void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
   cmd->add_flag("--protect-edges", f->protect_edges,
                 "split non-Delaunay polygon edges so more polygons succeed")
       ->group("Options");
+  cmd->add_flag("--keep-loop-directions", f->keep_loop_directions,
+                "several loops: keep each loop's direction (by default the "
+                "solver may reverse loops after the first)")
+      ->group("Options");
   cmd->add_flag("--validate", f->validate,
                 "count self-intersecting triangle pairs of the result")
       ->group("Options");
@@ -67,6 +71,7 @@ v1::Options RequestFlags::ToOptions() const {
   o.set_no_cache(no_cache);
   o.set_protect_edges(protect_edges);
   o.set_validate_output(validate);
+  o.set_keep_loop_directions(keep_loop_directions);
   o.set_time_budget_ms(time_budget_ms);
   o.set_omit_input_vertices(omit_input_vertices);
   return o;

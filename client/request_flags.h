@@ -27,6 +27,7 @@ struct RequestFlags {
   bool no_cache = false;
   bool protect_edges = false;
   bool validate = false;
+  bool keep_loop_directions = false;
   uint32_t time_budget_ms = 0;
   bool omit_input_vertices = true;
 

@@ -89,7 +89,20 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
   for (int i = 0; i + 2 < nm.size(); i += 3) {
     problem->normals.push_back({nm[i], nm[i + 1], nm[i + 2]});
   }
+  const auto& sizes = request.polygon().loop_sizes();
+  problem->loop_sizes.clear();
+  if (sizes.size() > 1) {
+    for (uint32_t size : sizes) {
+      if (size > static_cast<uint32_t>(c.size() / 3)) {
+        return InvalidArgument("polygon.loop_sizes has a loop of " +
+                               std::to_string(size) + " vertices, more than " +
+                               std::to_string(c.size() / 3) + " in all");
+      }
+      problem->loop_sizes.push_back(static_cast<int32_t>(size));
+    }
+  }
   problem->weights = FromWire(request.weights());
+  options->reorient_loops = !request.options().keep_loop_directions();
   options->space = FromWire(request.options().search_space());
   options->protect_edges = request.options().protect_edges();
   if (backend != v1::DELAUNAY_BACKEND_DEFAULT) {
@@ -120,6 +133,9 @@ v1::TriangulateRequest MakeRequest(const std::string& id,
     nm->Add(n.y);
     nm->Add(n.z);
   }
+  for (int32_t size : polygon.loop_sizes) {
+    r.mutable_polygon()->add_loop_sizes(static_cast<uint32_t>(size));
+  }
   *r.mutable_weights() = ToWire(weights);
   *r.mutable_options() = options;
   return r;
@@ -132,9 +148,12 @@ void FillSummary(const Result& r, v1::Summary* s) {
   s->set_vertex_count(static_cast<uint32_t>(r.vertices.size()));
   s->set_triangle_count(static_cast<uint32_t>(r.triangles.size()));
   s->set_inserted_count(static_cast<uint32_t>(r.inserted.size()));
-  if (!r.inserted.empty()) {
+  if (!r.inserted.empty() || !r.loop_sizes.empty()) {
     s->mutable_loop()->Add(r.polygon.begin(), r.polygon.end());
   }
+  s->mutable_loop_sizes()->Add(r.loop_sizes.begin(), r.loop_sizes.end());
+  s->mutable_reversed_loops()->Add(r.reversed_loops.begin(),
+                                   r.reversed_loops.end());
   for (const auto& [a, b] : r.non_delaunay_edges) {
     s->add_non_delaunay_edges(a);
     s->add_non_delaunay_edges(b);

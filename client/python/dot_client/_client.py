@@ -237,6 +237,8 @@ class Client:
                     time_budget_ms: Optional[int] = None,
                     memory_budget_bytes: Optional[int] = None,
                     no_cache: Optional[bool] = None,
+                    keep_loop_directions: Optional[bool] = None,
+                    loop_sizes: Optional[Sequence[int]] = None,
                     progress: Optional[Callable[[Progress], None]] = None,
                     progress_interval_ms: int = 100,
                     raise_no_triangulation: bool = True,
@@ -270,6 +272,12 @@ class Client:
         ``memory_budget_bytes`` lower the server's limits (0: the
         server's). ``no_cache`` skips the server's search-space cache.
 
+        ``loop_sizes``: several loops bounding one surface (see
+        :meth:`triangulate_loops`, which sets it): the row count of each
+        loop in ``points``, in order. ``keep_loop_directions`` keeps each
+        loop's direction (by default the solver may reverse loops after
+        the first).
+
         ``progress`` is called with a :class:`Progress` at most every
         ``progress_interval_ms``; an exception it raises (also
         KeyboardInterrupt) cancels the call and propagates.
@@ -287,12 +295,22 @@ class Client:
             search_space=search_space, protect_edges=protect_edges,
             delaunay_backend=delaunay_backend,
             validate_output=validate_output, time_budget_ms=time_budget_ms,
-            memory_budget_bytes=memory_budget_bytes, no_cache=no_cache)
+            memory_budget_bytes=memory_budget_bytes, no_cache=no_cache,
+            keep_loop_directions=keep_loop_directions)
         interval = (check.integer("progress_interval_ms",
                                   progress_interval_ms, minimum=1)
                     if progress is not None else 0)
         request, p = self._request(str(request_id), points, normals, o,
                                    interval)
+        if loop_sizes is not None:
+            sizes = [check.integer("loop_sizes", s, minimum=3)
+                     for s in loop_sizes]
+            if sum(sizes) != len(p):
+                raise InvalidInput(
+                    f"loop_sizes sum to {sum(sizes)}, but points has "
+                    f"{len(p)} rows")
+            if len(sizes) > 1:
+                request.polygon.loop_sizes.extend(sizes)
         deadline = self._deadline(timeout)
         call = self._stub.Triangulate(request, timeout=deadline)
         result: Result = self._run(
@@ -302,6 +320,46 @@ class Client:
                 and result.summary.status != "ok"):
             raise NoTriangulation(result.summary)
         return result
+
+    def triangulate_loops(self, loops: Sequence[ArrayLike],
+                          normals: Optional[Sequence[ArrayLike]] = None,
+                          **kwargs: Any) -> Result:
+        """One surface joining several closed loops: the minimal-cost
+        surface of genus 0 whose boundary is exactly these loops (an
+        island inside a hole, a tube between two rims; today 2 loops).
+
+        ``loops``: a sequence of (n_i, 3) arrays, each loop's vertices in
+        order (n_i >= 3). ``normals``: optional, one (n_i, 3) array per
+        loop. Every keyword argument of :meth:`triangulate` applies
+        (``keep_loop_directions`` among them).
+
+        Each loop runs along the surface in its given direction unless the
+        solver reversed it: ``result.summary.reversed_loops`` names those,
+        and ``result.summary.loop`` / ``loop_sizes`` list every loop as the
+        surface runs along it (vertex ids into ``result.vertices``).
+        """
+        if isinstance(loops, np.ndarray) or not isinstance(
+                loops, (list, tuple)):
+            raise InvalidInput("loops must be a list of (n, 3) arrays, one "
+                               "per loop")
+        if len(loops) < 1:
+            raise InvalidInput("loops is empty; give at least one loop")
+        arrays = [check.points(f"loops[{i}]", loop, min_rows=3)
+                  for i, loop in enumerate(loops)]
+        joined_normals = None
+        if normals is not None:
+            if len(normals) != len(arrays):
+                raise InvalidInput(
+                    f"normals has {len(normals)} arrays for {len(arrays)} "
+                    "loops; give one per loop")
+            joined_normals = np.concatenate(
+                [check.points(f"normals[{i}]", n)
+                 for i, n in enumerate(normals)])
+        if "loop_sizes" in kwargs:
+            raise TypeError("triangulate_loops sets loop_sizes itself")
+        return self.triangulate(np.concatenate(arrays), joined_normals,
+                                loop_sizes=[len(a) for a in arrays],
+                                **kwargs)
 
     def triangulate_many(self, polygons: Sequence[ArrayLike],
                          normals: Optional[Sequence[Optional[ArrayLike]]] = None,

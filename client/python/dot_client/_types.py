@@ -123,8 +123,11 @@ class Summary(_Plain):
     ``status`` is ``"ok"`` or ``"no_triangulation"`` (then ``message`` says
     why and ``non_delaunay_edges`` lists offending edges as (k, 2) vertex
     index pairs). ``loop`` is the polygon with inserted vertices in place
-    (only when ``inserted_count`` > 0). ``metric_costs`` maps each metric to
-    its unweighted sum. ``intersecting_pairs`` is -1 when not checked.
+    (only when ``inserted_count`` > 0, or for several loops: then
+    ``loop_sizes`` cuts it into loops, each listed in the direction the
+    surface runs along it, and ``reversed_loops`` names those that run
+    against their input). ``metric_costs`` maps each metric to its
+    unweighted sum. ``intersecting_pairs`` is -1 when not checked.
     """
     status: str = "unspecified"
     message: str = ""
@@ -145,6 +148,8 @@ class Summary(_Plain):
     compute_ms: float = 0.0
     delaunay_backend: str = ""
     cache_hit: bool = False
+    loop_sizes: List[int] = field(default_factory=list)
+    reversed_loops: List[int] = field(default_factory=list)
 
     @classmethod
     def from_proto(cls, m: Any) -> "Summary":
@@ -152,6 +157,8 @@ class Summary(_Plain):
             cls, m,
             status=_enum_name(m.status, pb.ResultStatus, "RESULT_STATUS_"),
             loop=np.array(m.loop, dtype=np.int64).astype(np.int32),
+            loop_sizes=[int(x) for x in m.loop_sizes],
+            reversed_loops=[int(x) for x in m.reversed_loops],
             non_delaunay_edges=np.array(m.non_delaunay_edges, dtype=np.int64)
             .astype(np.int32).reshape(-1, 2),
             metric_costs=weights_dict(m.metric_costs),
@@ -617,7 +624,9 @@ class TriangulateOptions(_Options):
     self-intersecting pairs (default False). ``time_budget_ms``,
     ``memory_budget_bytes``: lower the server's limits (0, the default:
     the server's). ``no_cache``: skip the server's search-space cache
-    (default False).
+    (default False). ``keep_loop_directions``: with several loops, keep
+    each loop's direction (default False: the solver may reverse loops
+    after the first when the surface is cheaper that way).
     """
     weights: Weights = Weights()
     search_space: str = "auto"
@@ -627,9 +636,12 @@ class TriangulateOptions(_Options):
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
     no_cache: bool = False
+    keep_loop_directions: bool = False
 
     def __post_init__(self) -> None:
         _set(self, "weights", Weights.of(self.weights, "triangulate"))
+        _set(self, "keep_loop_directions", check.flag(
+            "keep_loop_directions", self.keep_loop_directions))
         _set(self, "search_space", check.choice(
             "search_space", self.search_space, list(_SEARCH_SPACES)))
         _set(self, "delaunay_backend", check.choice(
@@ -656,6 +668,7 @@ class TriangulateOptions(_Options):
         o.protect_edges = self.protect_edges
         o.validate_output = self.validate_output
         o.no_cache = self.no_cache
+        o.keep_loop_directions = self.keep_loop_directions
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
 

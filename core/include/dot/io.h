@@ -40,6 +40,10 @@ namespace dot {
 // Format from the extension: .obj is OBJ, anything else plain text. Errors
 // name the file (and the reason a file cannot be opened). `notes`, when not
 // null, receives what the reader changed (a dropped closing vertex).
+// Several loops (PolygonData::loop_sizes): in text, blocks of lines
+// separated by blank lines; in OBJ, 'l' lines that close into several loops
+// (in the order their first edges appear). The text writer separates loops
+// the same way.
 Status ReadPolygonFile(const std::string& path, PolygonData* out,
                        std::vector<std::string>* notes = nullptr);
 Status ReadPolygonText(std::istream& in, PolygonData* out,

@@ -18,6 +18,8 @@ namespace dot {
 struct PolygonData {
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;  // empty or one per vertex
+  // Several loops (Problem::loop_sizes): their sizes; empty: one loop.
+  std::vector<int32_t> loop_sizes = {};
 };
 
 struct MeshData {

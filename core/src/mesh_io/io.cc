@@ -63,9 +63,10 @@ void DropClosingRepeats(PolygonData* p, std::vector<std::string>* notes) {
 }
 
 // Chains edges (pairs of vertex indices, in any direction and order) into
-// one closed loop, starting with the first edge in its direction.
+// closed loops, each starting with its first edge (in file order) in that
+// edge's direction.
 Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
-                  size_t vertex_count, std::vector<int32_t>* loop) {
+                  size_t vertex_count, std::vector<std::vector<int32_t>>* loops) {
   const auto name = [](int32_t v) { return "vertex " + std::to_string(v + 1); };
   std::vector<std::vector<int32_t>> next(vertex_count);
   size_t used = 0;
@@ -87,25 +88,47 @@ Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
     if (degree > 2) {
       return InvalidArgument(
           "the 'l' edges branch at " + name(static_cast<int32_t>(v)) + " (" +
-          std::to_string(degree) + " edges); a polygon is one closed loop");
+          std::to_string(degree) +
+          " edges); each loop of a polygon is a closed chain");
     }
   }
-  const int32_t start = edges.front().first;
-  int32_t prev = start, cur = edges.front().second;
-  loop->assign(1, start);
-  while (cur != start) {
-    loop->push_back(cur);
-    const int32_t after = next[cur][0] == prev ? next[cur][1] : next[cur][0];
-    prev = cur;
-    cur = after;
+  std::vector<char> taken(vertex_count, 0);
+  size_t chained = 0;
+  loops->clear();
+  for (const auto& [start, second] : edges) {
+    if (taken[start]) continue;
+    std::vector<int32_t> loop = {start};
+    taken[start] = 1;
+    int32_t prev = start, cur = second;
+    while (cur != start) {
+      loop.push_back(cur);
+      taken[cur] = 1;
+      const int32_t after = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+      prev = cur;
+      cur = after;
+    }
+    chained += loop.size();
+    loops->push_back(std::move(loop));
   }
-  if (loop->size() != used) {
-    return InvalidArgument(
-        "the 'l' edges form more than one loop (the one through " +
-        name(start) + " has " + std::to_string(loop->size()) + " of the " +
-        std::to_string(used) + " vertices); a polygon is one closed loop");
+  if (chained != used) {
+    return InvalidArgument("the 'l' edges do not close into loops");
   }
   return OkStatus();
+}
+
+// Concatenates loops read one by one, dropping each one's closing repeats.
+void JoinLoops(std::vector<PolygonData> loops, PolygonData* out,
+               std::vector<std::string>* notes) {
+  *out = {};
+  for (PolygonData& l : loops) {
+    DropClosingRepeats(&l, notes);
+    out->vertices.insert(out->vertices.end(), l.vertices.begin(),
+                         l.vertices.end());
+    out->normals.insert(out->normals.end(), l.normals.begin(), l.normals.end());
+    if (loops.size() > 1) {
+      out->loop_sizes.push_back(static_cast<int32_t>(l.vertices.size()));
+    }
+  }
 }
 
 }  // namespace
@@ -113,8 +136,15 @@ Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
 Status ReadPolygonText(std::istream& in, PolygonData* out,
                        std::vector<std::string>* notes) {
   *out = {};
+  std::vector<PolygonData> loops(1);
+  int with_normals = -1;  // unknown until the first vertex line
   std::string line;
   for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) {
+      // A blank line ends a loop.
+      if (!loops.back().vertices.empty()) loops.emplace_back();
+      continue;
+    }
     if (IsBlankOrComment(line)) continue;
     std::istringstream s(line);
     std::vector<double> x;
@@ -131,13 +161,17 @@ Status ReadPolygonText(std::istream& in, PolygonData* out,
                              " or 6 (x y z nx ny nz) numbers, found " +
                              std::to_string(x.size()));
     }
-    out->vertices.push_back({x[0], x[1], x[2]});
-    if (x.size() == 6) out->normals.push_back({x[3], x[4], x[5]});
+    if (with_normals < 0) with_normals = x.size() == 6;
+    if (with_normals != (x.size() == 6)) {
+      return InvalidArgument("line " + std::to_string(lineno) +
+                             ": some lines have normals and some do not");
+    }
+    loops.back().vertices.push_back({x[0], x[1], x[2]});
+    if (x.size() == 6) loops.back().normals.push_back({x[3], x[4], x[5]});
   }
-  if (!out->normals.empty() && out->normals.size() != out->vertices.size()) {
-    return InvalidArgument("some lines have normals and some do not");
-  }
-  DropClosingRepeats(out, notes);
+  if (loops.back().vertices.empty()) loops.pop_back();
+  if (loops.empty()) loops.emplace_back();
+  JoinLoops(std::move(loops), out, notes);
   return OkStatus();
 }
 
@@ -178,7 +212,8 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out,
       polylines.push_back(std::move(polyline));
     }
   }
-  std::vector<int32_t> loop;
+  std::vector<std::vector<int32_t>> ids(1);
+  std::vector<int32_t>& loop = ids.front();
   if (polylines.size() == 1) {
     loop = std::move(polylines.front());
     if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
@@ -197,21 +232,24 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out,
         edges.emplace_back(polyline[i], polyline[i + 1]);
       }
     }
-    const Status chained = ChainEdges(edges, v.size(), &loop);
+    const Status chained = ChainEdges(edges, v.size(), &ids);
     if (!chained.ok()) return chained;
   } else {
     for (size_t i = 0; i < v.size(); ++i)
       loop.push_back(static_cast<int32_t>(i));
   }
-  for (int32_t i : loop) out->vertices.push_back(v[i]);
-  if (!vn.empty()) {
-    if (vn.size() != v.size()) {
-      return InvalidArgument(std::to_string(vn.size()) + " 'vn' normals for " +
-                             std::to_string(v.size()) + " vertices");
-    }
-    for (int32_t i : loop) out->normals.push_back(vn[i]);
+  if (!vn.empty() && vn.size() != v.size()) {
+    return InvalidArgument(std::to_string(vn.size()) + " 'vn' normals for " +
+                           std::to_string(v.size()) + " vertices");
   }
-  DropClosingRepeats(out, notes);
+  std::vector<PolygonData> loops(ids.size());
+  for (size_t l = 0; l < ids.size(); ++l) {
+    for (int32_t i : ids[l]) {
+      loops[l].vertices.push_back(v[i]);
+      if (!vn.empty()) loops[l].normals.push_back(vn[i]);
+    }
+  }
+  JoinLoops(std::move(loops), out, notes);
   return OkStatus();
 }
 
@@ -232,7 +270,14 @@ Status ReadPolygonFile(const std::string& path, PolygonData* out,
 
 Status WritePolygonText(std::ostream& out, const PolygonData& polygon) {
   out.precision(17);
+  size_t loop = 0, loop_end = polygon.loop_sizes.empty()
+                                  ? polygon.vertices.size()
+                                  : polygon.loop_sizes[0];
   for (size_t i = 0; i < polygon.vertices.size(); ++i) {
+    if (i == loop_end && ++loop < polygon.loop_sizes.size()) {
+      out << '\n';  // a blank line between loops
+      loop_end += polygon.loop_sizes[loop];
+    }
     const Vec3& p = polygon.vertices[i];
     out << p.x << ' ' << p.y << ' ' << p.z;
     if (!polygon.normals.empty()) {
