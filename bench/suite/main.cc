@@ -45,9 +45,9 @@ int main(int argc, char** argv) {
   app.add_option(
          "--only", only,
          "run only these: curves, holes, gk, optimality, service, fill, "
-         "scan")
-      ->check(CLI::IsMember(
-          {"curves", "holes", "gk", "optimality", "service", "fill", "scan"}));
+         "scan, loops")
+      ->check(CLI::IsMember({"curves", "holes", "gk", "optimality", "service",
+                             "fill", "scan", "loops"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);
@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   if (wanted("service")) dot::bench::RunService(config, body);
   if (wanted("fill")) invalid += dot::bench::RunFill(config, body);
   if (wanted("scan")) invalid += dot::bench::RunScan(config, body);
+  if (wanted("loops")) invalid += dot::bench::RunLoops(config, body);
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count() /

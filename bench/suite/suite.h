@@ -42,6 +42,9 @@ void RunService(const Config& config, std::ostream& report);
 // Whole processes on scan-size meshes; returns the runs that failed or
 // left a hole open.
 int RunScan(const Config& config, std::ostream& report);
+// Several loops into one surface (fig_loops.cc); returns the outputs that
+// failed or did not validate.
+int RunLoops(const Config& config, std::ostream& report);
 
 // Formatting shared by the figures.
 std::string Fixed(double v, int digits = 1);  // "-" for NaN

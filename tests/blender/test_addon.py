@@ -442,6 +442,38 @@ def test_fill_loops_follow_normals_and_triangulate_custom_weights():
     check_mesh(sphere, boundary_edges=0)
 
 
+def test_triangulate_loops_one_surface_bridges_two_rims():
+    """A sphere's band (both caps removed): its two rims joined into one
+    tube through the inside, wound like the band, closing it into a
+    torus (Euler characteristic 0, no boundary left)."""
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    sphere = bpy.context.active_object
+    delete_faces(sphere, lambda c: c.z > 0.5)
+    delete_faces(sphere, lambda c: c.z < -0.5)
+    v0, f0, b0 = counts(sphere)
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(sphere, lambda c: True)
+    assert bpy.ops.mesh.dot_triangulate_loops(one_surface=True) \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v1, f1 = check_mesh(sphere, boundary_edges=0)
+    assert v1 == v0 and f1 == f0 + b0  # an annulus: a face per rim edge
+    bm = object_bmesh(sphere)
+    try:
+        assert len(bm.verts) - len(bm.edges) + len(bm.faces) == 0
+    finally:
+        bm.free()
+
+    # Three loops into one surface: refused by name, nothing changed.
+    sphere = sphere_with_four_holes()
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(sphere, lambda c: c.z > 0.8 or abs(c.x) > 0.8)
+    expect_report(lambda: bpy.ops.mesh.dot_triangulate_loops(one_surface=True),
+                  "One Surface joins two loops; 3 are selected")
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+
 def sphere_with_four_holes():
     """A UV sphere with four holes: at the top, and around +x, -x and +y
     on the equator."""
@@ -690,6 +722,33 @@ def test_triangulate_curve_bezier_poly_and_polyline():
         == {'FINISHED'}
     check_disk(bpy.context.active_object)
     assert counts(bpy.context.active_object)[0] == 40
+
+    # Two closed splines, one above the other: One Surface lofts a tube
+    # (an annulus: as many faces as vertices, no edge used twice).
+    data = bpy.data.curves.new("rims", 'CURVE')
+    data.dimensions = '3D'
+    for z, r in ((0.0, 1.0), (1.0, 0.7)):
+        rim = data.splines.new('POLY')
+        rim.points.add(23)
+        for k, p in enumerate(rim.points):
+            a = 2 * math.pi * k / 24
+            p.co = (r * math.cos(a), r * math.sin(a), z + 0.05 * math.sin(3 * a), 1)
+        rim.use_cyclic_u = True
+    rims = bpy.data.objects.new("rims", data)
+    bpy.context.scene.collection.objects.link(rims)
+    activate(rims)
+    assert bpy.ops.mesh.dot_triangulate_curve(one_surface=True) == {'FINISHED'}
+    tube = bpy.context.active_object
+    assert counts(tube)[:2] == (48, 48)
+    bm = object_bmesh(tube)
+    try:
+        assert sum(1 for e in bm.edges if e.is_boundary) == 48
+        assert all(len(e.link_faces) <= 2 for e in bm.edges)
+    finally:
+        bm.free()
+    activate(rims)
+    assert bpy.ops.mesh.dot_triangulate_curve() == {'FINISHED'}  # two caps
+    assert counts(bpy.context.active_object)[1] == 2 * 22
 
     # Open: refused, as a report.
     spline.use_cyclic_u = False

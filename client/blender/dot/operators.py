@@ -101,6 +101,11 @@ class TriangulateProps:
     one panel layout for every operator that triangulates loops."""
     search_space: EnumProperty(name="Search Space", items=SEARCH_SPACES,
                                default='AUTO')
+    one_surface: BoolProperty(
+        name="One Surface", default=False,
+        description="Join the two selected loops or closed curves into one "
+        "surface (a tube between two rims, a ring around an island) instead "
+        "of one patch each")
 
     def draw(self, context):
         layout = self.layout
@@ -108,6 +113,16 @@ class TriangulateProps:
         self.draw_weights(layout, self.preset == 'CUSTOM')
         layout.prop(self, "protect_edges")
         layout.prop(self, "search_space")
+        layout.prop(self, "one_surface")
+
+    def check_two(self, loops, what):
+        """Reports and returns False unless One Surface has two loops."""
+        if self.one_surface and len(loops) != 2:
+            self.report({'ERROR'}, f"DOT: One Surface joins two {what}; "
+                        f"{len(loops)} are selected (more than two into one "
+                        "surface is not supported yet)")
+            return False
+        return True
 
 
 # -- the job ---------------------------------------------------------------
@@ -266,6 +281,21 @@ def _triangulate_work(loops, normals, options):
             loops, normals, options=options, cancel=cancel,
             progress=lambda done, total, _: progress(
                 done / total, f"{done} of {total} loops"))
+    return work
+
+
+def _surface_work(loops, normals, options):
+    """One surface joining the loops ((n, 3) arrays): a Triangulate call
+    with several loops. Its answer, like a batch item, has .error (None or
+    the exception) and the result's fields."""
+    def work(client, cancel, progress):
+        progress(0.0, f"joining {len(loops)} loops")
+        result = client.triangulate_loops(loops, normals, options=options,
+                                          cancel=cancel,
+                                          raise_no_triangulation=False)
+        if result.summary.status != "ok":
+            result.error = dot_client.NoTriangulation(result.summary)
+        return result
     return work
 
 
@@ -450,7 +480,7 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
                                     bpy.types.Operator):
     """Fill each selected closed loop (boundary or loose edges) with its
     optimal DOT patch (Delaunay-restricted optimal triangulation of the
-    loop alone)"""
+    loop alone), or join two selected loops into one surface"""
     bl_idname = "mesh.dot_triangulate_loops"
     bl_label = "Triangulate Loops (DOT)"
     bl_options = {'REGISTER', 'UNDO'}
@@ -461,12 +491,13 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
         name="Protect Edges", default=False,
         description="Split boundary edges that are not Delaunay so more loops "
         "can be filled (the faces beside them get the new vertices)")
-
     def prepare(self, context):
         selected = self.selected_loops(context)
         if selected is None:
             return None
         obj, bm, loops = selected
+        if not self.check_two(loops, "loops"):
+            return None
         vertices = geometry.vertex_array(bm)
         weights = self.weights("triangulate")
         normals = None
@@ -475,16 +506,27 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
             bm.verts.ensure_lookup_table()
             normals = [np.array([bm.verts[i].normal[:] for i in loop])
                        for loop in loops]
+        # Rims of a surface come oriented against their faces: the surface
+        # joining them must keep those directions to be wound like its
+        # neighbours. Loose loops have no such direction.
+        rims = all(e is not None and e.is_boundary
+                   for loop in loops for e in _loop_edges(bm, loop))
         options = dot_client.TriangulateOptions(
             weights=weights, protect_edges=self.protect_edges,
-            search_space=self.search_space.lower())
+            search_space=self.search_space.lower(),
+            keep_loop_directions=self.one_surface and rims)
         state = {"loops": loops, "counts": (len(bm.verts), len(bm.faces))}
+        if self.one_surface:
+            return _surface_work([vertices[loop] for loop in loops], normals,
+                                 options), state
         return _triangulate_work([vertices[loop] for loop in loops], normals,
                                  options), state
 
     def finish(self, context, state, results):
         obj, bm = _edit_bmesh(context)
         geometry.check_unchanged(bm, *state["counts"])
+        if self.one_surface:
+            return self.finish_surface(bm, obj, state["loops"], results)
         problems = [f"loop {k + 1}: {describe(r.error)}"
                     for k, r in enumerate(results) if r.error is not None]
         if len(problems) == len(results):
@@ -498,6 +540,19 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
                 filled += 1
         self.update(obj, bm)
         return report_filled(self, filled, len(results), problems, stats)
+
+    def finish_surface(self, bm, obj, loops, result):
+        if result.error is not None:
+            return report_filled(self, 0, 1, [describe(result.error)], {})
+        self.select_only_new(bm)
+        stats = {}
+        geometry.add_patch(bm, loops[0] + loops[1], result.vertices,
+                           result.triangles, result.summary, stats)
+        self.update(obj, bm)
+        if result.summary.reversed_loops:
+            self.report({'INFO'}, "DOT: the second loop runs the other way "
+                        "along the surface; recalculate normals if needed")
+        return report_filled(self, 1, 1, [], stats)
 
 
 # -- mesh.dot_fill_holes ----------------------------------------------------
@@ -837,12 +892,17 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
             self.report({'ERROR'}, "DOT: curves have no normals: set the "
                         "normal deviation weight to 0")
             return None
+        if not self.check_two(loops, "closed curves"):
+            return None
         options = dot_client.TriangulateOptions(
             weights=weights, protect_edges=self.protect_edges,
             search_space=self.search_space.lower())
-        return _triangulate_work(loops, None, options), {"object": obj.name}
+        work = (_surface_work if self.one_surface else _triangulate_work)
+        return work(loops, None, options), {"object": obj.name}
 
     def finish(self, context, state, results):
+        if self.one_surface:
+            results = [results]  # one surface through every curve
         source = bpy.data.objects[state["object"]]
         bm = bmesh.new()
         problems, filled = [], 0

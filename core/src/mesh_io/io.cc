@@ -66,7 +66,8 @@ void DropClosingRepeats(PolygonData* p, std::vector<std::string>* notes) {
 // closed loops, each starting with its first edge (in file order) in that
 // edge's direction.
 Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
-                  size_t vertex_count, std::vector<std::vector<int32_t>>* loops) {
+                  size_t vertex_count,
+                  std::vector<std::vector<int32_t>>* loops) {
   const auto name = [](int32_t v) { return "vertex " + std::to_string(v + 1); };
   std::vector<std::vector<int32_t>> next(vertex_count);
   size_t used = 0;
@@ -142,7 +143,15 @@ Status ReadPolygonText(std::istream& in, PolygonData* out,
   for (int lineno = 1; std::getline(in, line); ++lineno) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) {
       // A blank line ends a loop.
-      if (!loops.back().vertices.empty()) loops.emplace_back();
+      const size_t size = loops.back().vertices.size();
+      if (size > 0 && size < 3) {
+        return InvalidArgument(
+            "line " + std::to_string(lineno) + ": a blank line ends loop " +
+            std::to_string(loops.size()) + " after " + std::to_string(size) +
+            (size == 1 ? " vertex" : " vertices") +
+            "; a loop needs at least 3 (blank lines separate loops)");
+      }
+      if (size > 0) loops.emplace_back();
       continue;
     }
     if (IsBlankOrComment(line)) continue;

@@ -19,12 +19,13 @@ std::string TempPath(const std::string& name) {
 }
 
 TEST(IoTest, PlainTextWithAndWithoutNormals) {
-  std::istringstream in("# a comment\n0 0 0\n\n1 0 0\n1 1 0.5\n");
+  std::istringstream in("# a comment\n0 0 0\n# another\n1 0 0\n1 1 0.5\n\n");
   PolygonData p;
   ASSERT_TRUE(ReadPolygonText(in, &p).ok());
   ASSERT_EQ(p.vertices.size(), 3u);
   EXPECT_EQ(p.vertices[2], (Vec3{1, 1, 0.5}));
   EXPECT_TRUE(p.normals.empty());
+  EXPECT_TRUE(p.loop_sizes.empty());
 
   std::istringstream with("0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 1 1\n");
   ASSERT_TRUE(ReadPolygonText(with, &p).ok());
@@ -111,10 +112,47 @@ TEST(IoTest, ObjEdgePerLineIsChainedIntoTheLoop) {
   EXPECT_NE(refused(four + "l 1 2\nl 2 3\nl 3 1\nl 2 4\nl 4 1\n")
                 .find("branch at vertex 1 (3 edges)"),
             std::string::npos);
-  const std::string six = four + "v 2 0 0\nv 2 1 0\n";
-  EXPECT_NE(refused(six + "l 1 2\nl 2 4\nl 4 1\nl 3 5\nl 5 6\nl 6 3\n")
-                .find("more than one loop"),
-            std::string::npos);
+}
+
+TEST(IoTest, SeveralLoopsAsBlocksOrObjLoops) {
+  // Text: blank lines separate loops; each loop's closing repeat is dropped.
+  std::istringstream text(
+      "0 0 0\n1 0 0\n1 1 0\n0 0 0\n\n\n# island\n"
+      "0.2 0.2 0.1\n0.3 0.2 0.1\n0.3 0.3 0.1\n0.2 0.3 0.1\n");
+  PolygonData p;
+  std::vector<std::string> notes;
+  ASSERT_TRUE(ReadPolygonText(text, &p, &notes).ok());
+  EXPECT_EQ(p.loop_sizes, (std::vector<int32_t>{3, 4}));
+  EXPECT_EQ(p.vertices.size(), 7u);
+  EXPECT_EQ(p.vertices[3], (Vec3{0.2, 0.2, 0.1}));
+  EXPECT_EQ(notes.size(), 1u);
+  std::istringstream short_block("0 0 0\n1 0 0\n\n0 1 0\n1 1 0\n2 2 0\n");
+  const Status s = ReadPolygonText(short_block, &p);
+  EXPECT_NE(s.message.find("line 3: a blank line ends loop 1 after 2 "
+                           "vertices; a loop needs at least 3"),
+            std::string::npos)
+      << s.message;
+
+  // OBJ: 'l' lines closing into two loops, in the order they appear.
+  const std::string six =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n";
+  std::istringstream obj(six + "l 1 2\nl 2 4\nl 4 1\nl 3 5\nl 5 6\nl 6 3\n");
+  ASSERT_TRUE(ReadPolygonObj(obj, &p).ok());
+  EXPECT_EQ(p.loop_sizes, (std::vector<int32_t>{3, 3}));
+  EXPECT_EQ(p.vertices[3], (Vec3{1, 1, 0}));
+  // Closed polylines, one per loop, as curve tools write them.
+  std::istringstream closed(six + "l 1 2 4 1\nl 3 5 6 3\n");
+  ASSERT_TRUE(ReadPolygonObj(closed, &p).ok());
+  EXPECT_EQ(p.loop_sizes, (std::vector<int32_t>{3, 3}));
+
+  // The writer separates loops with a blank line: a round trip.
+  std::ostringstream out;
+  ASSERT_TRUE(WritePolygonText(out, p).ok());
+  std::istringstream back(out.str());
+  PolygonData q;
+  ASSERT_TRUE(ReadPolygonText(back, &q).ok());
+  EXPECT_EQ(q.vertices, p.vertices);
+  EXPECT_EQ(q.loop_sizes, p.loop_sizes);
 }
 
 TEST(IoTest, MeshRoundTripsThroughEveryFormat) {
