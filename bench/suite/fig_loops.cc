@@ -25,10 +25,13 @@ Problem TwoRims(int n, double r2, double z2, bool exact, uint64_t seed) {
   for (int l = 0; l < 2; ++l) {
     const double radius = l ? r2 : 1.0;
     for (int i = 0; i < n; ++i) {
+      // Noise of a third of the spacing of the points, as on a scanned
+      // rim (coarser noise makes a zigzag no surface follows).
       const double a = (l ? -1 : 1) * 2 * kPi * i / n;
-      const double r = radius * (exact ? 1 : 1 + 0.02 * u(rng));
-      p.vertices.push_back({r * std::cos(a), r * std::sin(a),
-                            (l ? z2 : 0) + (exact ? 0 : 0.03 * u(rng))});
+      const double noise = exact ? 0 : 2 * kPi * radius / n / 3;
+      const double r = radius + noise * u(rng);
+      p.vertices.push_back(
+          {r * std::cos(a), r * std::sin(a), (l ? z2 : 0) + noise * u(rng)});
     }
     p.loop_sizes.push_back(n);
   }
@@ -75,14 +78,8 @@ int RunLoops(const Config& config, std::ostream& report) {
           config.reps, config.long_run_s, config.cap_s,
           [&] { r = SolveWith(c.problem, OneMetric(metric), options); });
       if (r.status.ok()) {
-        std::vector<std::vector<int32_t>> loops;
-        size_t begin = 0;
-        for (int32_t size : r.loop_sizes) {
-          loops.emplace_back(r.polygon.begin() + begin,
-                             r.polygon.begin() + begin + size);
-          begin += size;
-        }
-        const MeshReport m = ValidateSurface(r.vertices, loops, r.triangles);
+        const MeshReport m =
+            ValidateSurface(r.vertices, ResultLoops(r), r.triangles);
         if (!m.valid()) {
           std::cerr << "loops: INVALID " << c.name << " " << solver << ": "
                     << m.first_problem << "\n";
@@ -113,13 +110,17 @@ int RunLoops(const Config& config, std::ostream& report) {
             "tetrahedralization has Θ(n²) faces). Every output validated "
             "(genus 0, boundary = the loops, exact intersection test): "
          << invalid << " invalid. Data: `loops.csv`.\n\n"
-         << "| case | solver | ms | peak heap | candidates | DP states |\n"
-            "|---|---|---:|---:|---:|---:|\n";
+         << "| case | solver | ms | peak heap | candidates | DP states | "
+            "result |\n|---|---|---:|---:|---:|---:|---|\n";
   for (const Row& r : rows) {
     report << "| " << r.name << " | " << r.solver << " | "
            << (r.s.capped ? "> cap (" + Fixed(r.s.ms, 0) + ")" : Fixed(r.s.ms))
            << " | " << Mib(r.s.heap) << " | " << r.r.stats.search_triangles
-           << " | " << r.r.stats.dp_states << " |\n";
+           << " | " << r.r.stats.dp_states << " | "
+           << (r.r.status.ok()
+                   ? std::to_string(r.r.triangles.size()) + " triangles"
+                   : std::string(StatusCodeName(r.r.status.code)))
+           << " |\n";
   }
   report << "\n";
   return invalid;

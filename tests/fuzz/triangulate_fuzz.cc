@@ -2,12 +2,15 @@
 // libFuzzer target: dot::Triangulate on tiny polygons (4 to 10 vertices)
 // decoded from the input, with random coordinates (small integers, the same
 // at an extreme power-of-two scale or offset, dyadic fractions, raw bits),
-// normals, weights (bi-triangle ones included) and options (search space,
-// backend, edge protection, output validation, planarity tolerance).
+// normals, weights (bi-triangle ones included), sometimes split into two
+// loops bounding one surface, and options (search space, backend, edge
+// protection, output validation, planarity tolerance, loop reorientation).
 //
 // Oracle, checked with the project's exact validator (dot/validate.h):
 //  - an OK result is a disk whose boundary is the polygon (inserted vertices
-//    in place), consistently oriented so that the polygon runs i -> i+1, the
+//    in place), or for two loops a sphere with two holes bounded by them
+//    (a loop reversed only when allowed, and then reported), consistently
+//    oriented so that each loop runs i -> i+1 as the result lists it, the
 //    input's vertices returned unchanged; intersection-free unless the
 //    search space was explicitly kAll, whose intersecting pairs must then be
 //    counted right; its total cost is finite when its weighted metrics
@@ -61,11 +64,13 @@ void PrintInput() {
   std::fprintf(
       stderr,
       "\noptions: space=%s delaunay=%s protect_edges=%d "
-      "validate_output=%d planar_tolerance=%g\n",
+      "validate_output=%d planar_tolerance=%g reorient_loops=%d loops:",
       std::string(dot::SearchSpaceName(g_options->space)).c_str(),
       std::string(dot::DelaunayBackendName(g_options->delaunay)).c_str(),
       g_options->protect_edges, g_options->validate_output,
-      g_options->planar_tolerance);
+      g_options->planar_tolerance, g_options->reorient_loops);
+  for (int32_t size : g_problem->loop_sizes) std::fprintf(stderr, " %d", size);
+  std::fprintf(stderr, "\n");
 }
 
 [[noreturn]] void Fail(const std::string& what, const dot::Result& r) {
@@ -155,7 +160,8 @@ void CheckOk(const dot::Problem& problem, const dot::Options& options,
       Fail("input vertex " + std::to_string(i) + " changed", r);
     }
   }
-  // The loop: the input's vertices in order, inserted ones between them.
+  // The loops: the input's vertices in order (a reversed loop backwards
+  // from its first), inserted ones between them.
   if (r.polygon.size() != r.vertices.size()) Fail("loop size", r);
   if (r.inserted.size() != r.vertices.size() - problem.vertices.size()) {
     Fail("inserted count", r);
@@ -163,18 +169,46 @@ void CheckOk(const dot::Problem& problem, const dot::Options& options,
   if (!options.protect_edges && !r.inserted.empty()) {
     Fail("vertices inserted without protect_edges", r);
   }
-  int32_t next_input = 0;
-  for (int32_t id : r.polygon) {
-    if (id < 0 || id >= static_cast<int32_t>(r.vertices.size())) {
-      Fail("loop index out of range", r);
-    }
-    if (id < n && id != next_input++) Fail("loop out of order", r);
+  const std::vector<int32_t> input_sizes =
+      problem.loop_sizes.empty() ? std::vector<int32_t>{n} : problem.loop_sizes;
+  const std::vector<int32_t> output_sizes =
+      problem.loop_sizes.empty()
+          ? std::vector<int32_t>{static_cast<int32_t>(r.polygon.size())}
+          : r.loop_sizes;
+  if (output_sizes.size() != input_sizes.size()) Fail("loop count", r);
+  if (!options.reorient_loops && !r.reversed_loops.empty()) {
+    Fail("a loop reversed with reorient_loops off", r);
   }
-  if (next_input != n) Fail("loop misses input vertices", r);
+  std::vector<std::vector<int32_t>> loops;
+  int32_t input_begin = 0;
+  size_t at = 0;
+  for (size_t l = 0; l < output_sizes.size(); ++l) {
+    if (at + output_sizes[l] > r.polygon.size()) Fail("loop sizes", r);
+    loops.emplace_back(r.polygon.begin() + at,
+                       r.polygon.begin() + at + output_sizes[l]);
+    at += output_sizes[l];
+    const bool reversed =
+        std::count(r.reversed_loops.begin(), r.reversed_loops.end(),
+                   static_cast<int32_t>(l)) > 0;
+    const int32_t size = input_sizes[l];
+    int32_t k = 0;
+    for (int32_t id : loops.back()) {
+      if (id < 0 || id >= static_cast<int32_t>(r.vertices.size())) {
+        Fail("loop index out of range", r);
+      }
+      if (id >= n) continue;
+      const int32_t want = input_begin + (reversed ? (size - k) % size : k);
+      if (k >= size || id != want) Fail("loop out of order", r);
+      ++k;
+    }
+    if (k != size) Fail("loop misses input vertices", r);
+    input_begin += size;
+  }
+  if (at != r.polygon.size()) Fail("loop sizes", r);
 
-  // Edge-manifold disk spanning the polygon; its intersections separately.
+  // Edge-manifold, genus 0, bounded by the loops; intersections separately.
   const dot::MeshReport report =
-      dot::ValidateMesh(r.vertices, r.polygon, r.triangles, false);
+      dot::ValidateSurface(r.vertices, loops, r.triangles, false);
   if (!report.valid()) Fail("invalid mesh: " + report.first_problem, r);
   const int64_t pairs = dot::CountIntersectingPairs(r.vertices, r.triangles);
   if (options.space == dot::SearchSpace::kAll) {
@@ -193,20 +227,23 @@ void CheckOk(const dot::Problem& problem, const dot::Options& options,
       Fail("intersecting_pairs " + std::to_string(r.intersecting_pairs), r);
     }
   }
-  // Oriented so that the polygon runs i -> i+1: every loop edge is a
-  // triangle side in that direction.
-  const size_t m = r.polygon.size();
-  for (size_t i = 0; i < m; ++i) {
-    const int32_t a = r.polygon[i], b = r.polygon[(i + 1) % m];
-    const bool found = std::any_of(
-        r.triangles.begin(), r.triangles.end(), [a, b](const dot::Triangle& t) {
-          return (t[0] == a && t[1] == b) || (t[1] == a && t[2] == b) ||
-                 (t[2] == a && t[0] == b);
-        });
-    if (!found) {
-      Fail("loop edge " + std::to_string(a) + "->" + std::to_string(b) +
-               " is no triangle side in that direction",
-           r);
+  // Oriented so that each loop runs i -> i+1 as listed: every loop edge is
+  // a triangle side in that direction.
+  for (const std::vector<int32_t>& loop : loops) {
+    const size_t m = loop.size();
+    for (size_t i = 0; i < m; ++i) {
+      const int32_t a = loop[i], b = loop[(i + 1) % m];
+      const bool found = std::any_of(r.triangles.begin(), r.triangles.end(),
+                                     [a, b](const dot::Triangle& t) {
+                                       return (t[0] == a && t[1] == b) ||
+                                              (t[1] == a && t[2] == b) ||
+                                              (t[2] == a && t[0] == b);
+                                     });
+      if (!found) {
+        Fail("loop edge " + std::to_string(a) + "->" + std::to_string(b) +
+                 " is no triangle side in that direction",
+             r);
+      }
     }
   }
   // Costs are in the caller's units, where a metric may overflow (the area
@@ -247,6 +284,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int n = in.ConsumeIntegralInRange(4, 10);
   dot::Problem problem;
   problem.vertices = Vertices(in, n);
+  // Sometimes two loops bounding one surface (3 or more vertices each).
+  if (n >= 6 && in.ConsumeIntegralInRange(0, 2) == 0) {
+    const int first = in.ConsumeIntegralInRange(3, n - 3);
+    problem.loop_sizes = {first, n - first};
+  }
   if (in.ConsumeIntegralInRange(0, 2) == 0) {
     problem.normals.resize(n);
     for (dot::Vec3& v : problem.normals) {
@@ -274,6 +316,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       break;  // the default, 1e-6
   }
   options.max_inserted_vertices = 64;
+  options.reorient_loops = in.ConsumeBool();
   const bool via_cache = in.ConsumeIntegralInRange(0, 3) == 0;
 
   g_problem = &problem;

@@ -166,6 +166,10 @@ struct Result {
   Stats stats;
 };
 
+// The result's loops as ValidateSurface takes them: Result::polygon cut by
+// Result::loop_sizes (one loop: the polygon).
+std::vector<std::vector<int32_t>> ResultLoops(const Result& r);
+
 // Bytes the solvers' adjacency and DP tables of a search space of `triangles`
 // candidates need (DOT2 when `bi_triangle`).
 int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle);

@@ -106,12 +106,13 @@ class StripPass {
     queued_.assign(nodes.size(), 0);
   }
 
-  // What any cycle from start s whose A-side across A's last edge costs at
-  // least `cut` costs at least (0 unless prunable): that side bounds the A
-  // edges it covers, so the better of it and A's cover bound, plus B's.
-  double StartBound(int32_t s, double cut) const {
+  // What any cycle from a start whose first run of A-sides (to past A's
+  // last edge) costs at least `fan` costs at least (0 unless prunable): the
+  // run bounds the A edges it covers, so the better of it and A's cover
+  // bound, plus B's.
+  double StartBound(double fan) const {
     if (!prune_) return 0;
-    return std::max(cut, bound_a_.Sum(0, na_)) + bound_b_.Sum(0, nb_);
+    return std::max(fan, bound_a_.Sum(0, na_)) + bound_b_.Sum(0, nb_);
   }
 
   // Best cycle from start node `s` (DOT2: whose first arc is `first`) below
@@ -301,6 +302,15 @@ bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
 
 }  // namespace
 
+int64_t EstimateAnnulusBytes(int64_t candidates) {
+  // Two arcs per candidate with their DP states (DOT2 keeps them per arc),
+  // and ears: chords with their inner lists and candidates.
+  return candidates * 2 *
+             static_cast<int64_t>(sizeof(Arc) +
+                                  kCounts * (sizeof(double) + 8)) +
+         candidates * 3 * 96;
+}
+
 Status SolveAnnulus(const std::vector<int32_t>& loop_a,
                     const std::vector<int32_t>& loop_b,
                     const std::vector<Triangle>& candidates,
@@ -327,9 +337,8 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
     if (side[t[0]] < 0 || side[t[1]] < 0 || side[t[2]] < 0) continue;
     (sides == 0 ? on_a : sides == 3 ? on_b : cross).push_back(t);
   }
-  const int64_t estimate = static_cast<int64_t>(candidates.size()) * 2 *
-                               (sizeof(Arc) + kCounts * (sizeof(double) + 8)) +
-                           static_cast<int64_t>(candidates.size()) * 3 * 96;
+  const int64_t estimate =
+      EstimateAnnulusBytes(static_cast<int64_t>(candidates.size()));
   if (estimate > memory_budget_bytes) {
     return MakeStatus(StatusCode::kResourceExhausted,
                       "estimated memory " + std::to_string(estimate >> 20) +
@@ -426,20 +435,13 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
     }
   }
 
-  // Cover bounds (see CoverBound), and per vertex q of B the least cost of
-  // an A-side at q across A's last edge: every cycle from a start at q has
-  // one.
+  // Cover bounds (see CoverBound).
   CoverBound bound_a, bound_b;
   bound_a.Init(na);
   bound_b.Init(nb);
-  std::vector<double> cut_cost(nb, kInf);
   for (const Arc& a : arcs) {
-    const Node& from = nodes[a.from];
     if (a.on_a) {
-      bound_a.Add(from.x, a.advance, a.cost);
-      if (from.x + a.advance >= na) {
-        cut_cost[from.y] = std::min(cut_cost[from.y], a.cost);
-      }
+      bound_a.Add(nodes[a.from].x, a.advance, a.cost);
     } else {
       // From (x, p') to (x, p): B's edges p .. p' - 1.
       bound_b.Add(nodes[a.to].y, a.advance, a.cost);
@@ -447,14 +449,34 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
   }
   bound_a.Finish();
   bound_b.Finish();
+  // Per node (a, q): the least cost of a run of A-sides at q from a to past
+  // A's last edge, which every cycle starting there begins with (kInf: no
+  // such run, not a start). Runs at q go up in a, so by decreasing a.
+  std::vector<double> fan(node_count, kInf);
+  {
+    std::vector<int32_t> by_row(node_count);
+    std::iota(by_row.begin(), by_row.end(), 0);
+    std::sort(by_row.begin(), by_row.end(), [&](int32_t u, int32_t v) {
+      return nodes[u].y < nodes[v].y ||
+             (nodes[u].y == nodes[v].y && nodes[u].x > nodes[v].x);
+    });
+    for (int32_t v : by_row) {
+      for (int32_t i = out_begin[v]; i < out_begin[v + 1]; ++i) {
+        const Arc& a = arcs[out_arcs[i]];
+        if (!a.on_a) continue;
+        const bool crosses = nodes[v].x + a.advance >= na;
+        fan[v] = std::min(fan[v], crosses ? a.cost : a.cost + fan[a.to]);
+      }
+    }
+  }
   StripPass pass(nodes, arcs, out_begin, out_arcs, in_begin, in_arcs, na, nb,
                  bound_a, bound_b, costs);
   // Starts: nodes (a, q), a != 0, where q has an A-side across A's last
   // edge; likeliest first, so the best cycle so far prunes the rest.
   std::vector<std::pair<double, int32_t>> starts;
   for (int32_t s = 0; s < node_count; ++s) {
-    if (nodes[s].x == 0 || cut_cost[nodes[s].y] == kInf) continue;
-    starts.emplace_back(pass.StartBound(s, cut_cost[nodes[s].y]), s);
+    if (nodes[s].x == 0 || fan[s] == kInf) continue;
+    starts.emplace_back(pass.StartBound(fan[s]), s);
   }
   std::sort(starts.begin(), starts.end());
   const bool prune = costs.NonNegative();

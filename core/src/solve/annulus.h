@@ -42,6 +42,9 @@ struct AnnulusSolution {
   int64_t table_bytes = 0;
 };
 
+// Bytes SolveAnnulus's tables need at most for `candidates` triangles.
+int64_t EstimateAnnulusBytes(int64_t candidates);
+
 // `loop_a`, `loop_b`: positions in the direction each loop runs along the
 // surface (the surface on its left); `candidates`: triangles over positions
 // (any corner order). kNoTriangulation when no annulus exists among them;

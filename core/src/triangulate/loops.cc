@@ -202,6 +202,17 @@ Status SolveLoops(const PlaneFit& fit, bool planar,
                           " vertices; the loops have " +
                           std::to_string(loop->size()));
   }
+  const int64_t n = loop->size();
+  const int64_t estimate = EstimateAnnulusBytes(n * (n - 1) * (n - 2) / 6);
+  if (estimate > options.memory_budget_bytes) {
+    // Refused before the triangles are listed.
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "estimated memory " + std::to_string(estimate >> 20) +
+                          " MiB for all triangles on " + std::to_string(n) +
+                          " vertices exceeds the budget of " +
+                          std::to_string(options.memory_budget_bytes >> 20) +
+                          " MiB");
+  }
   r->space_used = SpaceUsed::kAll;
   auto t0 = Clock::now();
   s = AllTriangles(loop->Points(), control, &tris);

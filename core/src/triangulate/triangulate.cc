@@ -217,6 +217,18 @@ Status PrepareAll(const MetricWeights& weights, const Chords& forbidden,
 
 }  // namespace
 
+std::vector<std::vector<int32_t>> ResultLoops(const Result& r) {
+  if (r.loop_sizes.empty()) return {r.polygon};
+  std::vector<std::vector<int32_t>> loops;
+  size_t begin = 0;
+  for (int32_t size : r.loop_sizes) {
+    const size_t end = std::min(r.polygon.size(), begin + size);
+    loops.emplace_back(r.polygon.begin() + begin, r.polygon.begin() + end);
+    begin = end;
+  }
+  return loops;
+}
+
 Result Triangulate(const Problem& problem, const Options& options,
                    const Control& control) {
   const auto t_start = Clock::now();

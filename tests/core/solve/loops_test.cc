@@ -12,22 +12,10 @@
 
 #include "dot/dot.h"
 #include "fixtures/brute_force_surface.h"
-#include "search_space/delaunay_cgal.h"
-#include "search_space/faces_of_tetrahedra.h"
+#include "fixtures/search_spaces.h"
 
 namespace dot {
 namespace {
-
-std::vector<std::vector<int32_t>> LoopsOf(const Result& r) {
-  std::vector<std::vector<int32_t>> loops;
-  size_t begin = 0;
-  for (int32_t size : r.loop_sizes) {
-    loops.emplace_back(r.polygon.begin() + begin,
-                       r.polygon.begin() + begin + size);
-    begin += size;
-  }
-  return loops;
-}
 
 // A noisy circle of n points at height z, radius r, counter-clockwise seen
 // from +z (clockwise when `reverse`).
@@ -42,21 +30,6 @@ void AddLoop(std::mt19937_64& rng, int n, double r, double z, double noise,
     p->normals.push_back(Normalized(Vec3{u(rng), u(rng), 1.0}));
   }
   p->loop_sizes.push_back(n);
-}
-
-std::set<Triangle> DelaunaySpace(const std::vector<Vec3>& v) {
-  std::vector<Triangle> faces;
-  int64_t tetrahedra = 0;
-  EXPECT_TRUE(CgalDelaunayFaces(v, {}, &faces, &tetrahedra).ok());
-  return {faces.begin(), faces.end()};
-}
-
-std::set<Triangle> AllSpace(int n) {
-  std::set<Triangle> all;
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b)
-      for (int c = b + 1; c < n; ++c) all.insert({a, b, c});
-  return all;
 }
 
 std::vector<std::pair<const char*, MetricWeights>> Mixes() {
@@ -126,7 +99,7 @@ void ExpectOptimal(const Problem& p, SearchSpace space, bool reorient,
         << where << " (" << ref.surfaces << " surfaces)";
     ASSERT_EQ(r.loop_sizes.size(), 2u) << where;
     const MeshReport report = ValidateSurface(
-        r.vertices, LoopsOf(r), r.triangles, space != SearchSpace::kAll);
+        r.vertices, ResultLoops(r), r.triangles, space != SearchSpace::kAll);
     EXPECT_TRUE(report.valid()) << where << ": " << report.first_problem;
     // The boundary runs each loop's way (reversed ones reversed).
     EXPECT_TRUE(report.boundary_is_polygon) << where;
@@ -148,8 +121,8 @@ TEST(LoopsOptimalityTest, TwoLoopsEqualExhaustiveSearchOverDelaunay) {
     AddLoop(rng, n2, island ? 0.35 : 0.8, island ? 0.1 : 0.9, 0.2,
             trial % 4 < 2, &p);
     ExpectOptimal(p, SearchSpace::kDelaunay, trial % 5 != 0,
-                  DelaunaySpace(p.vertices), "trial " + std::to_string(trial),
-                  &solved, &none);
+                  testing::ReferenceDelaunaySpace(p.vertices),
+                  "trial " + std::to_string(trial), &solved, &none);
   }
   std::printf("solved %d, no surface %d\n", solved, none);
   EXPECT_GT(solved, 100);
@@ -164,7 +137,8 @@ TEST(LoopsOptimalityTest, TwoLoopsEqualExhaustiveSearchOverAllTriangles) {
     AddLoop(rng, n1, 1.0, 0, 0.3, false, &p);
     AddLoop(rng, n2, 0.6, 0.5, 0.3, trial % 3 == 0, &p);
     const int n = n1 + n2;
-    ExpectOptimal(p, SearchSpace::kAll, trial % 2 == 0, AllSpace(n),
+    ExpectOptimal(p, SearchSpace::kAll, trial % 2 == 0,
+                  testing::AllTriangleSpace(n),
                   "all trial " + std::to_string(trial), &solved, &none);
   }
   std::printf("solved %d, no surface %d\n", solved, none);
@@ -188,7 +162,7 @@ TEST(LoopsTest, TubeIsAnAnnulusCloseToTheCylinder) {
   const Result r = Triangulate(Tube(100, false));
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   const MeshReport report =
-      ValidateSurface(r.vertices, LoopsOf(r), r.triangles);
+      ValidateSurface(r.vertices, ResultLoops(r), r.triangles);
   EXPECT_TRUE(report.valid()) << report.first_problem;
   EXPECT_EQ(report.intersecting_pairs, 0);
   EXPECT_EQ(r.triangles.size(), 200u);  // an annulus: as many as vertices
@@ -204,7 +178,7 @@ TEST(LoopsTest, LoopGivenTheOtherWayIsReversedOrRefused) {
   const Result r = Triangulate(p);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_EQ(r.reversed_loops, std::vector<int32_t>{1});
-  EXPECT_TRUE(ValidateSurface(r.vertices, LoopsOf(r), r.triangles).valid());
+  EXPECT_TRUE(ValidateSurface(r.vertices, ResultLoops(r), r.triangles).valid());
   // The result's loop 1 is the input's, reversed.
   EXPECT_EQ(r.polygon[40], 40);
   EXPECT_EQ(r.polygon[41], 79);
@@ -232,7 +206,7 @@ TEST(LoopsTest, PlanarIslandFillsTheRingExactly) {
   EXPECT_DOUBLE_EQ(r.total_cost, 16 - 1);
   EXPECT_EQ(r.triangles.size(), 8u);
   const MeshReport report =
-      ValidateSurface(r.vertices, LoopsOf(r), r.triangles);
+      ValidateSurface(r.vertices, ResultLoops(r), r.triangles);
   EXPECT_TRUE(report.valid()) << report.first_problem;
 }
 
@@ -244,6 +218,17 @@ TEST(LoopsTest, CoplanarLoopsSideBySideHaveNoSurface) {
   const Result r = Triangulate(p);
   EXPECT_EQ(r.status.code, StatusCode::kNoTriangulation);
   EXPECT_NE(r.status.message.find("one encloses the other"), std::string::npos)
+      << r.status.message;
+}
+
+TEST(LoopsTest, BudgetRefusesBeforeListingAllTriangles) {
+  Options all;
+  all.space = SearchSpace::kAll;
+  all.memory_budget_bytes = int64_t{64} << 20;
+  const Result r = Triangulate(Tube(150, false), all);
+  EXPECT_EQ(r.status.code, StatusCode::kResourceExhausted);
+  EXPECT_NE(r.status.message.find("all triangles on 300 vertices"),
+            std::string::npos)
       << r.status.message;
 }
 

@@ -10,6 +10,7 @@
 
 #include "dot/dot.h"
 #include "fixtures/brute_force.h"
+#include "fixtures/search_spaces.h"
 #include "mesh/edge_index.h"
 #include "search_space/delaunay_cgal.h"
 #include "search_space/faces_of_tetrahedra.h"
@@ -58,28 +59,8 @@ Problem RandomProblem(std::mt19937_64& rng, int n) {
   return p;
 }
 
-// TetGen's faces where it is built in: then the reference space does not
-// even share the backend with Triangulate (CGAL).
-std::set<Triangle> DelaunaySpace(const std::vector<Vec3>& v) {
-  std::vector<Triangle> faces;
-  if (TetgenAvailable()) {
-    Tetrahedralization tets;
-    EXPECT_TRUE(TetgenTetrahedralize(v, &tets).ok());
-    EXPECT_TRUE(FacesOfTetrahedra(tets, &faces).ok());
-  } else {
-    int64_t tetrahedra = 0;
-    EXPECT_TRUE(CgalDelaunayFaces(v, {}, &faces, &tetrahedra).ok());
-  }
-  return {faces.begin(), faces.end()};
-}
-
-std::set<Triangle> AllSpace(int n) {
-  std::set<Triangle> all;
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b)
-      for (int c = b + 1; c < n; ++c) all.insert({a, b, c});
-  return all;
-}
+using testing::AllTriangleSpace;
+using testing::ReferenceDelaunaySpace;
 
 void ExpectNear(double expected, double actual, const std::string& what) {
   EXPECT_NEAR(expected, actual, 1e-9 * std::max(1.0, std::fabs(expected)))
@@ -93,8 +74,8 @@ TEST(OptimalityTest, DotAndGkEqualBruteForceOnRandomPolygons) {
   for (int trial = 0; trial < 240; ++trial) {
     const int n = 4 + trial % 6;  // 4..9
     Problem p = RandomProblem(rng, n);
-    const std::set<Triangle> delaunay = DelaunaySpace(p.vertices);
-    const std::set<Triangle> all = AllSpace(n);
+    const std::set<Triangle> delaunay = ReferenceDelaunaySpace(p.vertices);
+    const std::set<Triangle> all = AllTriangleSpace(n);
     for (const Mix& mix : mixes) {
       p.weights = mix.w;
       const std::string what = "trial " + std::to_string(trial) +
@@ -160,8 +141,8 @@ TEST(OptimalityTest, EdgeFaceNormalsAndForbiddenChordsEqualBruteForce) {
     p.forbidden_edges = {{a, b}};
     const uint64_t key = UndirectedEdgeKey(a, b);
     for (const auto& [space, reference] :
-         {std::pair{SearchSpace::kDelaunay, DelaunaySpace(p.vertices)},
-          std::pair{SearchSpace::kAll, AllSpace(n)}}) {
+         {std::pair{SearchSpace::kDelaunay, ReferenceDelaunaySpace(p.vertices)},
+          std::pair{SearchSpace::kAll, AllTriangleSpace(n)}}) {
       std::set<Triangle> allowed;
       for (const Triangle& t : reference) {
         if (UndirectedEdgeKey(t[0], t[1]) != key &&
