@@ -91,6 +91,11 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
   }
   const auto& sizes = request.polygon().loop_sizes();
   problem->loop_sizes.clear();
+  if (sizes.size() == 1 && sizes[0] != static_cast<uint32_t>(c.size() / 3)) {
+    return InvalidArgument(
+        "polygon.loop_sizes has one loop of " + std::to_string(sizes[0]) +
+        " vertices, but there are " + std::to_string(c.size() / 3));
+  }
   if (sizes.size() > 1) {
     for (uint32_t size : sizes) {
       if (size > static_cast<uint32_t>(c.size() / 3)) {

@@ -137,8 +137,9 @@ JobRunner::Work JobRunner::TriangulateWork() {
     Control control = job_control;
     if (!job.wire.no_cache()) control.space_cache = cache_;
     job.result = dot::Triangulate(job.problem, job.options, control);
-    // Counted when the request got as far as a search space.
-    if (control.space_cache != nullptr &&
+    // Counted when the request got as far as a search space (several loops
+    // do not use the cache).
+    if (control.space_cache != nullptr && job.problem.loop_sizes.empty() &&
         job.result.space_used != SpaceUsed::kNone) {
       metrics_->CacheLookup(job.result.stats.cache_hit,
                             control.space_cache->counters());
