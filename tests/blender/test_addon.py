@@ -651,6 +651,21 @@ def test_triangulate_loops_protect_edges_splits_the_neighbours():
         assert sorted(len(f.verts) for f in bm.faces)[-2:] == [4, 6]
     finally:
         bm.free()
+    # Two loops of loose edges joined into one surface, with edge
+    # protection splitting both loops' closing edges (and the second loop
+    # reversed by the solver): every split lands on its own loop.
+    q = [(x + 0.3, y + 0.2, z + 3.0) for x, y, z in reversed(list(map(tuple, p)))]
+    tube = mesh_object("tube", list(map(tuple, p)) + q,
+                       edges=[(i, (i + 1) % n) for i in range(n)] +
+                       [(n + i, n + (i + 1) % n) for i in range(n)])
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    assert bpy.ops.mesh.dot_triangulate_loops(
+        preset='MINIMAL_AREA', search_space='DELAUNAY', protect_edges=True,
+        one_surface=True) == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    v, f = check_mesh(tube, boundary_edges=len(tube.data.vertices))
+    assert v > 2 * n and f == v, (v, f)  # an annulus: a face per vertex
     # A loop of loose edges (no faces) fills too.
     wire = mesh_object("wire", list(map(tuple, p)),
                        edges=[(i, (i + 1) % n) for i in range(n)])

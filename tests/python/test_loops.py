@@ -62,7 +62,7 @@ def test_loop_given_the_other_way_is_reversed_and_reported(client):
     # Kept as given, the rims would need a twisted surface: none exists.
     with pytest.raises(dot_client.NoTriangulation) as e:
         client.triangulate_loops(loops, keep_loop_directions=True)
-    assert "no surface joining the 2 loops" in str(e.value)
+    assert "one does with it reversed" in str(e.value)
 
 
 def test_malformed_loops_are_refused_before_the_call(client):
@@ -73,6 +73,9 @@ def test_malformed_loops_are_refused_before_the_call(client):
     with pytest.raises(dot_client.InvalidInput, match="one per loop"):
         client.triangulate_loops([ring(5, 1, 0), ring(5, 0.5, 1)],
                                  normals=[np.ones((5, 3))])
+    with pytest.raises(dot_client.InvalidInput, match="normals\\[0\\] has 6 rows"):
+        client.triangulate_loops([ring(5, 1, 0), ring(5, 0.5, 1)],
+                                 normals=[np.ones((6, 3)), np.ones((4, 3))])
     with pytest.raises(dot_client.InvalidInput, match="sum to"):
         client.triangulate(ring(6, 1, 0), loop_sizes=[3, 4])
 

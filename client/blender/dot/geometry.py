@@ -209,14 +209,37 @@ def _new_face(bm, verts, example, stats):
 
 
 def add_patch(bm, loop, vertices, triangles, summary, stats):
-    """Joins one Triangulate result to its loop (vertex indices). Vertices
-    DOT inserted (edge protection) split the loop's edges where they lie,
-    so the faces beside them take them too. Returns the new faces."""
+    """Joins one Triangulate result to its loop (vertex indices; for a
+    surface through several loops, their indices one loop after another).
+    Vertices DOT inserted (edge protection) split the loops' edges where
+    they lie, so the faces beside them take them too. Returns the new
+    faces."""
     bm.verts.ensure_lookup_table()
     n = len(loop)
     verts = {i: bm.verts[v] for i, v in enumerate(loop)}
     example = _example_face(verts.values())
-    ids = [int(i) for i in summary.loop] if summary.inserted_count else list(range(n))
+    if summary.inserted_count:
+        # summary.loop lists each loop (cut by loop_sizes) with the inserted
+        # vertices in place; each loop closes on itself.
+        ids = [int(i) for i in summary.loop]
+        sizes = list(summary.loop_sizes) or [len(ids)]
+        begin = 0
+        for size in sizes:
+            _split_loop_edges(bm, verts, vertices, ids[begin:begin + size], n,
+                              stats)
+            begin += size
+    faces = []
+    for t in triangles:
+        f = _new_face(bm, [verts[int(i)] for i in t], example, stats)
+        if f is not None:
+            faces.append(f)
+    return faces
+
+
+def _split_loop_edges(bm, verts, vertices, ids, n, stats):
+    """Splits the edges of one loop (result ids, inserted ones >= n in
+    place) at the vertices inserted on them; `verts` maps ids to bm
+    vertices and gains the new ones."""
     originals = [k for k, i in enumerate(ids) if i < n]
     for a_at, b_at in zip(originals, originals[1:] + [originals[0] + len(ids)]):
         inserted = [ids[k % len(ids)] for k in range(a_at + 1, b_at)]
@@ -233,12 +256,6 @@ def add_patch(bm, loop, vertices, triangles, summary, stats):
             verts[k] = v
             edge, at = bm.edges.get((v, b)), v
         stats["inserted"] = stats.get("inserted", 0) + len(inserted)
-    faces = []
-    for t in triangles:
-        f = _new_face(bm, [verts[int(i)] for i in t], example, stats)
-        if f is not None:
-            faces.append(f)
-    return faces
 
 
 def merge_coincident(bm):

@@ -352,9 +352,14 @@ class Client:
                 raise InvalidInput(
                     f"normals has {len(normals)} arrays for {len(arrays)} "
                     "loops; give one per loop")
-            joined_normals = np.concatenate(
-                [check.points(f"normals[{i}]", n)
-                 for i, n in enumerate(normals)])
+            arrays_n = [check.points(f"normals[{i}]", n)
+                        for i, n in enumerate(normals)]
+            for i, (n, a) in enumerate(zip(arrays_n, arrays)):
+                if len(n) != len(a):
+                    raise InvalidInput(
+                        f"normals[{i}] has {len(n)} rows; expected one per "
+                        f"vertex of loops[{i}] ({len(a)})")
+            joined_normals = np.concatenate(arrays_n)
         if "loop_sizes" in kwargs:
             raise TypeError("triangulate_loops sets loop_sizes itself")
         return self.triangulate(np.concatenate(arrays), joined_normals,

@@ -130,6 +130,12 @@ void JoinLoops(std::vector<PolygonData> loops, PolygonData* out,
       out->loop_sizes.push_back(static_cast<int32_t>(l.vertices.size()));
     }
   }
+  if (loops.size() > 1 && notes) {
+    // Said, since a stray blank line in a one-loop text file splits it.
+    notes->push_back("read " + std::to_string(loops.size()) +
+                     " loops (blank lines or separate 'l' loops separate "
+                     "them): they bound one surface");
+  }
 }
 
 }  // namespace

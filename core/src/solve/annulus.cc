@@ -64,6 +64,11 @@ class CoverBound {
       prefix_[i + 1] = prefix_[i] + per_edge_[i % per_edge_.size()];
     }
   }
+  // Whether every edge has a side covering it.
+  bool Covered() const {
+    return std::all_of(per_edge_.begin(), per_edge_.end(),
+                       [](double e) { return e < kInf; });
+  }
   // Edges first_edge, ..., first_edge + count - 1 (cyclic).
   double Sum(int32_t first_edge, int32_t count) const {
     return prefix_[first_edge + count] - prefix_[first_edge];
@@ -225,6 +230,10 @@ bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
     }
     const auto [ru, rv] = Coords(s, v);
     for (int32_t i = out_begin_[v]; i < out_begin_[v + 1]; ++i) {
+      if (!ticker->Tick()) {  // a pop can relax in * out * 16 states
+        *stopped = true;
+        return false;
+      }
       const int32_t b = out_[i];
       const Arc& arc = arcs_[b];
       bool sink = false;
@@ -236,6 +245,10 @@ bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
       const int32_t ib = bi_ ? in_begin_[v] : 0,
                     ie = bi_ ? in_begin_[v + 1] : 1;
       for (int32_t j = ib; j < ie; ++j) {
+        if (bi_ && !ticker->Tick()) {
+          *stopped = true;
+          return false;
+        }
         const int32_t a = bi_ ? in_[j] : -1;
         const size_t from_slot = bi_ ? static_cast<size_t>(a) : v;
         if (bi_ && dist_[from_slot * kCounts + kCounts - 1] == kInf) {
@@ -305,9 +318,11 @@ bool StripPass::Run(int32_t s, int32_t first, RunTicker* ticker, double* best,
 int64_t EstimateAnnulusBytes(int64_t candidates) {
   // Two arcs per candidate with their DP states (DOT2 keeps them per arc),
   // and ears: chords with their inner lists and candidates.
+  // Per state slot: its cost, its predecessor and (once reached) its entry
+  // in the list of slots to reset.
   return candidates * 2 *
              static_cast<int64_t>(sizeof(Arc) +
-                                  kCounts * (sizeof(double) + 8)) +
+                                  kCounts * (sizeof(double) + 16)) +
          candidates * 3 * 96;
 }
 
@@ -315,7 +330,8 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
                     const std::vector<int32_t>& loop_b,
                     const std::vector<Triangle>& candidates,
                     const SurfaceCosts& costs, int64_t memory_budget_bytes,
-                    const Control& control, AnnulusSolution* out) {
+                    double upper_bound, const Control& control,
+                    AnnulusSolution* out) {
   const auto na = static_cast<int32_t>(loop_a.size());
   const auto nb = static_cast<int32_t>(loop_b.size());
   std::vector<int32_t> local(costs.points.size(), -1);
@@ -449,6 +465,10 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
   }
   bound_a.Finish();
   bound_b.Finish();
+  if (!bound_a.Covered() || !bound_b.Covered()) {
+    // Some loop edge is on no usable side: no cycle can cover it.
+    return MakeStatus(StatusCode::kNoTriangulation, "");
+  }
   // Per node (a, q): the least cost of a run of A-sides at q from a to past
   // A's last edge, which every cycle starting there begins with (kInf: no
   // such run, not a start). Runs at q go up in a, so by decreasing a.
@@ -480,7 +500,7 @@ Status SolveAnnulus(const std::vector<int32_t>& loop_a,
   }
   std::sort(starts.begin(), starts.end());
   const bool prune = costs.NonNegative();
-  double best = kInf;
+  double best = upper_bound;
   std::vector<int32_t> path, candidate_path;
   bool stopped = false;
   for (const auto& [bound, s] : starts) {

@@ -47,13 +47,15 @@ int64_t EstimateAnnulusBytes(int64_t candidates);
 
 // `loop_a`, `loop_b`: positions in the direction each loop runs along the
 // surface (the surface on its left); `candidates`: triangles over positions
-// (any corner order). kNoTriangulation when no annulus exists among them;
+// (any corner order). Only an annulus cheaper than `upper_bound` counts
+// (kInf: any). kNoTriangulation when none exists among them;
 // kResourceExhausted when its tables would exceed `memory_budget_bytes`.
 Status SolveAnnulus(const std::vector<int32_t>& loop_a,
                     const std::vector<int32_t>& loop_b,
                     const std::vector<Triangle>& candidates,
                     const SurfaceCosts& costs, int64_t memory_budget_bytes,
-                    const Control& control, AnnulusSolution* out);
+                    double upper_bound, const Control& control,
+                    AnnulusSolution* out);
 
 }  // namespace dot
 

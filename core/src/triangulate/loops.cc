@@ -59,31 +59,38 @@ std::vector<std::pair<int32_t, int32_t>> MissingLoopEdges(
 }
 
 // The cheaper annulus with loop B as given or (when allowed) reversed.
+// When B may not be reversed and no surface exists, `*only_reversed` says
+// whether one would with B reversed (for the message).
 Status SolveTwo(const PolygonLoop& loop, const std::vector<Triangle>& tris,
                 const MetricWeights& weights, const Options& options,
-                const Control& control, AnnulusSolution* best, bool* reversed) {
+                const Control& control, AnnulusSolution* best, bool* reversed,
+                bool* only_reversed) {
   const SurfaceCosts costs = CostsOf(loop, weights);
   const std::vector<int32_t> a = LoopPositions(loop, 0);
   std::vector<int32_t> b = LoopPositions(loop, 1);
-  Status s = SolveAnnulus(a, b, tris, costs, options.memory_budget_bytes,
+  Status s = SolveAnnulus(a, b, tris, costs, options.memory_budget_bytes, kInf,
                           control, best);
-  *reversed = false;
-  if (s.ok() || s.code == StatusCode::kNoTriangulation) {
-    // Edge face normals fix each loop's direction (the surrounding faces).
-    if (options.reorient_loops && costs.edge_normals.empty()) {
-      std::reverse(b.begin(), b.end());
-      AnnulusSolution flipped;
-      flipped.states = best->states;
-      const Status f = SolveAnnulus(
-          a, b, tris, costs, options.memory_budget_bytes, control, &flipped);
-      if (f.ok() && (!s.ok() || flipped.cost < best->cost)) {
-        *best = std::move(flipped);
-        *reversed = true;
-        return f;
-      }
-      best->states = flipped.states;
-      if (!f.ok() && f.code != StatusCode::kNoTriangulation) return f;
-    }
+  *reversed = *only_reversed = false;
+  if (!s.ok() && s.code != StatusCode::kNoTriangulation) return s;
+  // Edge face normals fix each loop's direction (the surrounding faces).
+  const bool may_reverse = options.reorient_loops && costs.edge_normals.empty();
+  if (!may_reverse && s.ok()) return s;
+  std::reverse(b.begin(), b.end());
+  AnnulusSolution flipped;
+  flipped.states = best->states;
+  // Reversed, it must beat the first direction's cost to count.
+  const Status f = SolveAnnulus(a, b, tris, costs, options.memory_budget_bytes,
+                                s.ok() ? best->cost : kInf, control, &flipped);
+  best->states = flipped.states;
+  if (!f.ok() && f.code != StatusCode::kNoTriangulation) return f;
+  if (!may_reverse) {
+    *only_reversed = f.ok();
+    return s;
+  }
+  if (f.ok()) {
+    *best = std::move(flipped);
+    *reversed = true;
+    return f;
   }
   return s;
 }
@@ -93,8 +100,11 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
              Result* r) {
   auto t0 = Clock::now();
   AnnulusSolution sol;
-  bool reversed = false;
-  Status s = SolveTwo(*loop, tris, weights, options, control, &sol, &reversed);
+  bool reversed = false, only_reversed = false;
+  r->non_delaunay_edges.clear();
+  r->reversed_loops.clear();
+  Status s = SolveTwo(*loop, tris, weights, options, control, &sol, &reversed,
+                      &only_reversed);
   r->stats.search_triangles = static_cast<int64_t>(tris.size());
   r->stats.dp_states = sol.states;
   r->stats.table_bytes = sol.table_bytes;
@@ -115,6 +125,12 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
       }
       if (r->non_delaunay_edges.size() > 10) m << " ...";
       m << (all ? "" : " (edge protection splits them)");
+    } else if (only_reversed) {
+      m << "no surface joins the loops with loop 1 running its given way; "
+           "one does with it reversed (let the solver reverse loops: drop "
+           "keep_loop_directions"
+        << (loop->edge_normals.empty() ? "" : ", or give no edge face normals")
+        << ")";
     } else {
       m << "no surface joining the " << loop->LoopCount()
         << " loops exists among the "
@@ -133,16 +149,18 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
   for (const Triangle& t : sol.triangles) {
     r->triangles.push_back({loop->ids[t[0]], loop->ids[t[1]], loop->ids[t[2]]});
   }
-  r->reversed_loops.clear();
-  if (reversed) {
-    const std::vector<int32_t> b = LoopPositions(*loop, 1);
-    // Reversed, from the same first vertex.
-    std::reverse(loop->ids.begin() + b.front() + 1,
-                 loop->ids.begin() + b.back() + 1);
-    r->reversed_loops.push_back(1);
-  }
+  if (reversed) r->reversed_loops.push_back(1);
   return OkStatus();
 }
+
+}  // namespace
+
+namespace {
+
+Status SolveLoopsOnce(const PlaneFit& fit, bool planar,
+                      const MetricWeights& weights, const Problem& problem,
+                      const Options& options, const Control& control,
+                      PolygonLoop* loop, Result* r);
 
 }  // namespace
 
@@ -150,6 +168,27 @@ Status SolveLoops(const PlaneFit& fit, bool planar,
                   const MetricWeights& weights, const Problem& problem,
                   const Options& options, const Control& control,
                   PolygonLoop* loop, Result* r) {
+  Status s =
+      SolveLoopsOnce(fit, planar, weights, problem, options, control, loop, r);
+  if (!s.ok()) {
+    r->reversed_loops.clear();
+    return s;
+  }
+  if (!r->reversed_loops.empty()) {
+    // Listed as the surface runs along it: reversed, from its first vertex.
+    const std::vector<int32_t> b = LoopPositions(*loop, 1);
+    std::reverse(loop->ids.begin() + b.front() + 1,
+                 loop->ids.begin() + b.back() + 1);
+  }
+  return s;
+}
+
+namespace {
+
+Status SolveLoopsOnce(const PlaneFit& fit, bool planar,
+                      const MetricWeights& weights, const Problem& problem,
+                      const Options& options, const Control& control,
+                      PolygonLoop* loop, Result* r) {
   const int32_t k = loop->LoopCount();
   if (k > 2) {
     return InvalidArgument(
@@ -235,5 +274,7 @@ Status SolveLoops(const PlaneFit& fit, bool planar,
   }
   return OkStatus();
 }
+
+}  // namespace
 
 }  // namespace dot

@@ -125,7 +125,8 @@ TEST(IoTest, SeveralLoopsAsBlocksOrObjLoops) {
   EXPECT_EQ(p.loop_sizes, (std::vector<int32_t>{3, 4}));
   EXPECT_EQ(p.vertices.size(), 7u);
   EXPECT_EQ(p.vertices[3], (Vec3{0.2, 0.2, 0.1}));
-  EXPECT_EQ(notes.size(), 1u);
+  ASSERT_EQ(notes.size(), 2u);  // the closing repeat, and the loop count
+  EXPECT_NE(notes[1].find("read 2 loops"), std::string::npos) << notes[1];
   std::istringstream short_block("0 0 0\n1 0 0\n\n0 1 0\n1 1 0\n2 2 0\n");
   const Status s = ReadPolygonText(short_block, &p);
   EXPECT_NE(s.message.find("line 3: a blank line ends loop 1 after 2 "

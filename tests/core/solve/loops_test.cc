@@ -189,6 +189,10 @@ TEST(LoopsTest, LoopGivenTheOtherWayIsReversedOrRefused) {
   // A tube whose rims run the same way has no oriented surface of
   // Delaunay triangles: it would have to twist.
   EXPECT_EQ(k.status.code, StatusCode::kNoTriangulation) << k.status.message;
+  EXPECT_NE(k.status.message.find("one does with it reversed"),
+            std::string::npos)
+      << k.status.message;
+  EXPECT_TRUE(k.reversed_loops.empty());
 }
 
 TEST(LoopsTest, PlanarIslandFillsTheRingExactly) {
