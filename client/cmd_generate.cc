@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// dotctl generate curve|hole|holes : test data. Polygons (the paper's
-// curves, and hole boundaries grown on a triangle mesh) as "x y z
-// [nx ny nz]" text; meshes with holes cut out (and the removed patches).
+// dotctl generate curve|loops|hole|holes : test data. Polygons (the paper's
+// curves, two loops bounding one surface, and hole boundaries grown on a
+// triangle mesh) as "x y z [nx ny nz]" text; meshes with holes cut out (and
+// the removed patches).
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
@@ -15,7 +16,8 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx);
 
 void AddGenerateCommand(CLI::App& app, Context* ctx) {
   CLI::App* gen = app.add_subcommand(
-      "generate", "Write test polygons: the paper's curves or mesh holes.");
+      "generate",
+      "Write test polygons: the paper's curves, loop pairs or mesh holes.");
   gen->require_subcommand(1);
 
   struct CurveFlags {
@@ -44,6 +46,38 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
     const PolygonData polygon{MakeCurve(*which, c->n), {}};
     const Status s = c->out == "-" ? WritePolygonText(std::cout, polygon)
                                    : WritePolygonText(c->out, polygon);
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitFailed;
+    }
+  });
+
+  struct LoopsFlags {
+    std::string name, out;
+    int n = 100;
+    uint64_t seed = 1;
+  };
+  auto lp = std::make_shared<LoopsFlags>();
+  CLI::App* loops = gen->add_subcommand(
+      "loops",
+      "tube or island: two loops bounding one surface, in one file (blank "
+      "line between them)");
+  loops->add_option("name", lp->name, "tube or island")
+      ->required()
+      ->check(CLI::IsMember({"tube", "island"}));
+  loops->add_option("-n,--vertices", lp->n, "vertices per loop")
+      ->check(CLI::Range(3, 10000000))
+      ->capture_default_str();
+  loops->add_option("--seed", lp->seed, "random seed")->capture_default_str();
+  loops
+      ->add_option("-o,--output", lp->out,
+                   "polygon file to write (- for stdout)")
+      ->required();
+  loops->callback([lp, ctx] {
+    const PolygonData polygon =
+        MakeLoopPair(*LoopPairFromName(lp->name), lp->n, lp->seed);
+    const Status s = lp->out == "-" ? WritePolygonText(std::cout, polygon)
+                                    : WritePolygonText(lp->out, polygon);
     if (!s.ok()) {
       std::cerr << "dotctl: " << s.message << "\n";
       ctx->exit_code = kExitFailed;

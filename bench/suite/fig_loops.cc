@@ -6,7 +6,6 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
-#include <random>
 
 #include "measure.h"
 #include "suite.h"
@@ -14,24 +13,23 @@
 namespace dot::bench {
 namespace {
 
-// Two rims: an outer one of radius 1 at height 0 and an inner one of radius
-// `r2` at height `z2`, running against it (as a surface's boundary does),
-// with seeded radial and vertical noise (`exact`: none, every rim
-// cocircular, which gives the Delaunay tetrahedralization Θ(n²) faces).
-Problem TwoRims(int n, double r2, double z2, bool exact, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
+Problem TwoRims(LoopPair pair, int n, uint64_t seed) {
+  const PolygonData d = MakeLoopPair(pair, n, seed);
+  Problem p;
+  p.vertices = d.vertices;
+  p.loop_sizes = d.loop_sizes;
+  return p;
+}
+
+// Two exact circles (no noise), the tube's radii and heights: cocircular
+// rims, whose Delaunay tetrahedralization has more faces.
+Problem ExactTube(int n) {
   Problem p;
   for (int l = 0; l < 2; ++l) {
-    const double radius = l ? r2 : 1.0;
+    const double r = l ? 0.7 : 1.0;
     for (int i = 0; i < n; ++i) {
-      // Noise of a third of the spacing of the points, as on a scanned
-      // rim (coarser noise makes a zigzag no surface follows).
       const double a = (l ? -1 : 1) * 2 * kPi * i / n;
-      const double noise = exact ? 0 : 2 * kPi * radius / n / 3;
-      const double r = radius + noise * u(rng);
-      p.vertices.push_back(
-          {r * std::cos(a), r * std::sin(a), (l ? z2 : 0) + noise * u(rng)});
+      p.vertices.push_back({r * std::cos(a), r * std::sin(a), l ? 0.8 : 0});
     }
     p.loop_sizes.push_back(n);
   }
@@ -51,13 +49,13 @@ int RunLoops(const Config& config, std::ostream& report) {
                                      : std::vector<int>{50, 200, 500, 1000};
   for (int n : sizes) {
     cases.push_back({"tube 2 x " + std::to_string(n),
-                     TwoRims(n, 0.7, 0.8, false, 1000 + n)});
+                     TwoRims(LoopPair::kTube, n, 1000 + n)});
   }
   for (int n : sizes) {
     cases.push_back({"island 2 x " + std::to_string(n),
-                     TwoRims(n, 0.35, 0.05, false, 2000 + n)});
+                     TwoRims(LoopPair::kIsland, n, 2000 + n)});
   }
-  cases.push_back({"cocircular tube 2 x 200", TwoRims(200, 0.7, 0.8, true, 0)});
+  cases.push_back({"cocircular tube 2 x 200", ExactTube(200)});
   struct Row {
     std::string name, solver;
     int n;

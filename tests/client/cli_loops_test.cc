@@ -77,5 +77,29 @@ TEST(CliLoopsTest, TwoLoopsInOneFileBecomeOneSurfaceRemoteAndLocal) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CliLoopsTest, GeneratedLoopPairsTriangulate) {
+  const auto dir = testing::TempDir("cli-loops-generate");
+  for (const char* kind : {"tube", "island"}) {
+    const std::string xyz = (dir / (std::string(kind) + ".xyz")).string();
+    ASSERT_EQ(
+        Dotctl(std::string("generate loops ") + kind + " -n 40 -o " + xyz).code,
+        0);
+    PolygonData read;
+    std::vector<std::string> notes;
+    ASSERT_TRUE(ReadPolygonFile(xyz, &read, &notes).ok());
+    EXPECT_EQ(read.loop_sizes, (std::vector<int32_t>{40, 40}));
+    EXPECT_EQ(read.vertices,
+              MakeLoopPair(*LoopPairFromName(kind), 40).vertices);
+    const testing::CliRun r =
+        Dotctl("triangulate --local --keep-loop-directions " + xyz +
+               " --format obj -o /dev/null");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("80 triangles joining 2 loops,"), std::string::npos)
+        << r.out;
+  }
+  EXPECT_NE(Dotctl("generate loops torus -o /dev/null").code, 0);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace dot

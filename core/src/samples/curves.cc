@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <random>
 
 namespace dot {
 namespace {
@@ -120,6 +121,37 @@ std::string_view CurveName(Curve c) {
       return "trefoil";
   }
   return "?";
+}
+
+std::string_view LoopPairName(LoopPair p) {
+  return p == LoopPair::kTube ? "tube" : "island";
+}
+
+std::optional<LoopPair> LoopPairFromName(std::string_view name) {
+  for (LoopPair p : {LoopPair::kTube, LoopPair::kIsland}) {
+    if (LoopPairName(p) == name) return p;
+  }
+  return std::nullopt;
+}
+
+PolygonData MakeLoopPair(LoopPair pair, int n, uint64_t seed) {
+  const bool tube = pair == LoopPair::kTube;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  PolygonData p;
+  for (int l = 0; l < 2; ++l) {
+    const double radius = l == 0 ? 1.0 : tube ? 0.7 : 0.35;
+    const double height = l == 0 ? 0.0 : tube ? 0.8 : 0.05;
+    const double noise = 2 * kPi * radius / n / 3;
+    for (int i = 0; i < n; ++i) {
+      const double a = (l == 0 ? 1 : -1) * 2 * kPi * i / n;
+      const double r = radius + noise * u(rng);
+      p.vertices.push_back(
+          {r * std::cos(a), r * std::sin(a), height + noise * u(rng)});
+    }
+    p.loop_sizes.push_back(n);
+  }
+  return p;
 }
 
 std::optional<Curve> CurveFromName(std::string_view name) {
