@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // libFuzzer target: the plain-text polygon parser (dot::ReadPolygonText,
-// "x y z [nx ny nz]" per line). Oracle: never crash; a failure has a
-// message; an accepted polygon has no normals or one per vertex, and
-// survives a round trip through its text form (17 digits) bit for bit.
+// "x y z [nx ny nz]" per line, blank lines between loops). Oracle: never
+// crash; a failure has a message; an accepted polygon has no normals or one
+// per vertex, several loops of at least 3 vertices summing to the vertex
+// count, and survives a round trip through WritePolygonText bit for bit.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -32,23 +33,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       polygon.normals.size() != polygon.vertices.size()) {
     abort();
   }
-  // Round trip, as WritePolygonText writes it.
-  std::ostringstream out;
-  out.precision(17);
-  for (size_t i = 0; i < polygon.vertices.size(); ++i) {
-    const dot::Vec3& p = polygon.vertices[i];
-    out << p.x << ' ' << p.y << ' ' << p.z;
-    if (!polygon.normals.empty()) {
-      const dot::Vec3& n = polygon.normals[i];
-      out << ' ' << n.x << ' ' << n.y << ' ' << n.z;
-    }
-    out << '\n';
+  if (polygon.loop_sizes.size() == 1) abort();
+  size_t total = 0;
+  for (int32_t size : polygon.loop_sizes) {
+    if (size < 3) abort();
+    total += static_cast<size_t>(size);
   }
+  if (!polygon.loop_sizes.empty() && total != polygon.vertices.size()) abort();
+  // Round trip through the writer.
+  std::ostringstream out;
+  if (!dot::WritePolygonText(out, polygon).ok()) abort();
   std::istringstream again(out.str());
   dot::PolygonData reread;
   if (!dot::ReadPolygonText(again, &reread).ok()) abort();
   if (reread.vertices.size() != polygon.vertices.size() ||
-      reread.normals.size() != polygon.normals.size()) {
+      reread.normals.size() != polygon.normals.size() ||
+      reread.loop_sizes != polygon.loop_sizes) {
     abort();
   }
   for (size_t i = 0; i < polygon.vertices.size(); ++i) {

@@ -185,6 +185,14 @@ Status ReadPolygonText(std::istream& in, PolygonData* out,
     if (x.size() == 6) loops.back().normals.push_back({x[3], x[4], x[5]});
   }
   if (loops.back().vertices.empty()) loops.pop_back();
+  if (loops.size() > 1 && loops.back().vertices.size() < 3) {
+    const size_t size = loops.back().vertices.size();
+    return InvalidArgument(
+        "the last loop (loop " + std::to_string(loops.size()) + ") has " +
+        std::to_string(size) + (size == 1 ? " vertex" : " vertices") +
+        "; a loop needs at least 3 (blank lines separate "
+        "loops)");
+  }
   if (loops.empty()) loops.emplace_back();
   JoinLoops(std::move(loops), out, notes);
   return OkStatus();

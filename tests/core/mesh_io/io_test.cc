@@ -134,6 +134,12 @@ TEST(IoTest, SeveralLoopsAsBlocksOrObjLoops) {
             std::string::npos)
       << s.message;
 
+  // A last loop too short, with no blank line after it to say so.
+  std::istringstream short_last("0 0 0\n1 0 0\n1 1 0\n\n0 1 0\n");
+  EXPECT_NE(ReadPolygonText(short_last, &p)
+                .message.find("the last loop (loop 2) has 1 vertex"),
+            std::string::npos);
+
   // OBJ: 'l' lines closing into two loops, in the order they appear.
   const std::string six =
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n";
