@@ -117,12 +117,21 @@ Status ChainEdges(const std::vector<std::pair<int32_t, int32_t>>& edges,
   return OkStatus();
 }
 
-// Concatenates loops read one by one, dropping each one's closing repeats.
-void JoinLoops(std::vector<PolygonData> loops, PolygonData* out,
-               std::vector<std::string>* notes) {
+// Concatenates loops read one by one, dropping each one's closing repeats;
+// with several, each must keep at least 3 vertices.
+Status JoinLoops(std::vector<PolygonData> loops, PolygonData* out,
+                 std::vector<std::string>* notes) {
   *out = {};
-  for (PolygonData& l : loops) {
+  for (size_t k = 0; k < loops.size(); ++k) {
+    PolygonData& l = loops[k];
     DropClosingRepeats(&l, notes);
+    if (loops.size() > 1 && l.vertices.size() < 3) {
+      return InvalidArgument(
+          "loop " + std::to_string(k + 1) + " has " +
+          std::to_string(l.vertices.size()) +
+          " distinct vertices once the repeats closing it are dropped; a "
+          "loop needs at least 3");
+    }
     out->vertices.insert(out->vertices.end(), l.vertices.begin(),
                          l.vertices.end());
     out->normals.insert(out->normals.end(), l.normals.begin(), l.normals.end());
@@ -136,6 +145,7 @@ void JoinLoops(std::vector<PolygonData> loops, PolygonData* out,
                      " loops (blank lines or separate 'l' loops separate "
                      "them): they bound one surface");
   }
+  return OkStatus();
 }
 
 }  // namespace
@@ -194,8 +204,7 @@ Status ReadPolygonText(std::istream& in, PolygonData* out,
         "loops)");
   }
   if (loops.empty()) loops.emplace_back();
-  JoinLoops(std::move(loops), out, notes);
-  return OkStatus();
+  return JoinLoops(std::move(loops), out, notes);
 }
 
 Status ReadPolygonObj(std::istream& in, PolygonData* out,
@@ -272,8 +281,7 @@ Status ReadPolygonObj(std::istream& in, PolygonData* out,
       if (!vn.empty()) loops[l].normals.push_back(vn[i]);
     }
   }
-  JoinLoops(std::move(loops), out, notes);
-  return OkStatus();
+  return JoinLoops(std::move(loops), out, notes);
 }
 
 Status ReadPolygonFile(const std::string& path, PolygonData* out,
