@@ -14,6 +14,22 @@ namespace dot::client {
 
 void AddGenerateHolesCommand(CLI::App* gen, Context* ctx);
 
+namespace {
+
+// Writes a generated polygon to `out` (- for stdout); a failure is
+// reported and sets the exit code.
+void WritePolygonOut(const PolygonData& polygon, const std::string& out,
+                     Context* ctx) {
+  const Status s = out == "-" ? WritePolygonText(std::cout, polygon)
+                              : WritePolygonText(out, polygon);
+  if (!s.ok()) {
+    std::cerr << "dotctl: " << s.message << "\n";
+    ctx->exit_code = kExitFailed;
+  }
+}
+
+}  // namespace
+
 void AddGenerateCommand(CLI::App& app, Context* ctx) {
   CLI::App* gen = app.add_subcommand(
       "generate",
@@ -43,13 +59,7 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       ctx->exit_code = kExitUsage;
       return;
     }
-    const PolygonData polygon{MakeCurve(*which, c->n), {}};
-    const Status s = c->out == "-" ? WritePolygonText(std::cout, polygon)
-                                   : WritePolygonText(c->out, polygon);
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitFailed;
-    }
+    WritePolygonOut(PolygonData{MakeCurve(*which, c->n), {}}, c->out, ctx);
   });
 
   struct LoopsFlags {
@@ -74,14 +84,8 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
                    "polygon file to write (- for stdout)")
       ->required();
   loops->callback([lp, ctx] {
-    const PolygonData polygon =
-        MakeLoopPair(*LoopPairFromName(lp->name), lp->n, lp->seed);
-    const Status s = lp->out == "-" ? WritePolygonText(std::cout, polygon)
-                                    : WritePolygonText(lp->out, polygon);
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitFailed;
-    }
+    WritePolygonOut(MakeLoopPair(*LoopPairFromName(lp->name), lp->n, lp->seed),
+                    lp->out, ctx);
   });
 
   struct HoleFlags {
