@@ -35,6 +35,8 @@ struct FillFlags {
   bool skip_longest = false;
   std::vector<int32_t> holes;
   std::vector<uint32_t> loops_through;
+  std::string islands = "auto";
+  std::vector<std::vector<int32_t>> join;
   MetricWeights weights;
   bool absolute_weights = false;
   double density = 0;
@@ -57,6 +59,10 @@ struct FillFlags {
     o.set_skip_longest(skip_longest);
     for (int32_t h : holes) o.add_holes(h);
     for (uint32_t v : loops_through) o.add_loops_through(v);
+    o.set_islands(islands == "off" ? v1::ISLANDS_OFF : v1::ISLANDS_AUTO);
+    for (const std::vector<int32_t>& group : join) {
+      o.add_join()->mutable_loops()->Add(group.begin(), group.end());
+    }
     o.set_density(density);
     o.set_fairing_continuity(fairing_continuity);
     o.set_no_repair(no_repair);
@@ -116,6 +122,44 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
                   "only the holes through these vertices (ids of the input "
                   "file, from 0), e.g. 120,4077")
       ->delimiter(',')
+      ->group("Which holes");
+  cmd->add_option("--islands", f->islands,
+                  "auto: a hole's islands (pieces of surface floating "
+                  "inside it) are joined to its rim in one patch; off: "
+                  "every loop is filled alone")
+      ->check(CLI::IsMember({"auto", "off"}))
+      ->capture_default_str()
+      ->group("Which holes");
+  cmd->add_option_function<std::vector<std::string>>(
+         "--join",
+         [f](const std::vector<std::string>& groups) {
+           for (const std::string& g : groups) {
+             std::vector<int32_t> ids;
+             std::istringstream in(g);
+             for (std::string id; std::getline(in, id, ',');) {
+               ids.push_back(static_cast<int32_t>(std::stol(id)));
+             }
+             f->join.push_back(std::move(ids));
+           }
+         },
+         "fill these holes by one patch, e.g. --join 3,7 (a rim and its "
+         "islands, or two borders to bridge); repeatable")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            std::istringstream in(value);
+            int count = 0;
+            for (std::string id; std::getline(in, id, ',');) {
+              char* end = nullptr;
+              const long v = std::strtol(id.c_str(), &end, 10);
+              if (id.empty() || *end != '\0' || v < 0 || v > INT32_MAX) {
+                return "must be hole ids separated by commas, got " + value;
+              }
+              ++count;
+            }
+            return count >= 2 ? std::string()
+                              : "needs at least 2 hole ids, got " + value;
+          },
+          "ID,ID[,ID...]"))
       ->group("Which holes");
   AddWeightFlags(cmd, &f->weights,
                  "Metric weights (default: --squared-dihedral 1 --area 0.01)",
@@ -193,6 +237,16 @@ Status ReadInput(const FillFlags& f, PolygonSoup* soup,
   return s;
 }
 
+// "joins islands 3, 5; " on a rim whose patch joins other loops.
+std::string JoinedNote(const v1::HoleReport& h) {
+  if (h.joined().empty()) return "";
+  std::string note = h.joined_size() == 1 ? "joins island " : "joins islands ";
+  for (int k = 0; k < h.joined_size(); ++k) {
+    note += (k ? ", " : "") + std::to_string(h.joined(k));
+  }
+  return note + "; ";
+}
+
 void PrintTable(const v1::FillReport& r) {
   std::cout << " hole edges  status            escalation       inserted "
                "refined faired     ms  note\n";
@@ -211,7 +265,8 @@ void PrintTable(const v1::FillReport& r) {
               << std::setw(8) << h.refined_vertices() << std::setw(7)
               << (h.faired() ? "yes" : "no") << std::setw(7) << std::fixed
               << std::setprecision(1) << ms << "  "
-              << (h.pinched() ? "pinched loop; " : "") << h.reason() << "\n";
+              << (h.pinched() ? "pinched loop; " : "") << JoinedNote(h)
+              << h.reason() << "\n";
     std::cout.unsetf(std::ios::fixed);
   }
 }
@@ -232,7 +287,7 @@ void PrintListing(const std::string& input, const v1::FillReport& r) {
               << std::setw(40) << centroid.str() << std::setw(9)
               << HoleStatusName(wire::HoleStatusFromWire(h.status()))
               << std::right << (h.pinched() ? "pinched loop; " : "")
-              << h.reason() << "\n";
+              << JoinedNote(h) << h.reason() << "\n";
   }
   std::cout << input << ": " << r.loops() << " holes, " << r.listed()
             << " would be filled"

@@ -46,6 +46,21 @@ Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
     o->selection.through_vertices.push_back(
         static_cast<int32_t>(std::min<uint32_t>(v, INT32_MAX)));
   }
+  switch (wire.islands()) {
+    case v1::ISLANDS_AUTO:
+      o->islands = IslandMode::kAuto;
+      break;
+    case v1::ISLANDS_OFF:
+      o->islands = IslandMode::kOff;
+      break;
+    default:
+      return InvalidArgument("unknown islands mode " +
+                             std::to_string(wire.islands()) +
+                             " (ISLANDS_AUTO or ISLANDS_OFF)");
+  }
+  for (const v1::LoopGroup& g : wire.join()) {
+    o->join.emplace_back(g.loops().begin(), g.loops().end());
+  }
   // The ranges are the core's to check, one place for every caller.
   return CheckFillOptions(*o);
 }
@@ -125,6 +140,8 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
     for (double c : {h.centroid.x, h.centroid.y, h.centroid.z}) {
       w->add_centroid(c);
     }
+    for (int32_t id : h.joined) w->add_joined(id);
+    if (h.joined_to >= 0) w->set_joined_to(h.joined_to);
   }
   out->set_loops(r.loops);
   out->set_filled(r.filled);

@@ -7,7 +7,9 @@
 //   FindHoleLoops     every border cycle, split into simple loops, oriented
 //                     so that a fill face agrees with its neighbours;
 //   (selection)       which loops to fill: FillOptions::selection;
-//   TriangulateHole   one loop -> a patch (DOT, escalating to edge
+//   GroupHoleLoops    which loops one patch joins (a hole's rim and the
+//                     rims of its islands);
+//   TriangulateHole   one hole's loops -> a patch (DOT, escalating to edge
 //                     protection, then to all triangles for small holes);
 //   RefineAndFairPatch  Liepa refinement and fairing of one patch (CGAL);
 //   FillHoles         all of the above over a whole mesh, holes in parallel;
@@ -79,6 +81,36 @@ struct HoleSelection {
   std::vector<int32_t> through_names;
 };
 
+// Holes with islands: a hole's border may be several loops, its rim and
+// the rims of islands (pieces of surface floating inside it); one patch of
+// genus 0 joins them (Triangulate over several loops, each loop keeping its
+// direction, so the patch agrees with the faces around every loop).
+//  kAuto  loop I is an island of loop R when R is the innermost loop around
+//         I and lies on another piece of the mesh (faces joined by shared
+//         vertices). "Around": R is wider (bounding-box diagonal) and, seen
+//         along R's vector-area normal (Newell's), the centre of I's
+//         vertices is inside R (non-zero winding number) and within half
+//         R's diameter of R's mean plane. The centre rather than every
+//         vertex: on a curved surface an island's own border may overhang
+//         its rim's outline where the hole is one face wide. The innermost
+//         loop is the narrowest one around; a loop inside another of its
+//         own piece (the inner rim of a ring-shaped island) is a rim of its
+//         own, and an island's rim is never itself an island.
+//  kOff   every loop is a hole of its own.
+enum class IslandMode { kAuto, kOff };
+std::string_view IslandModeName(IslandMode m);  // "auto", "off"
+
+// Per loop (HoleLoop::id), the id of the loop whose patch fills it: itself
+// for a hole's rim, the rim for an island. Groups in `join` (loop ids,
+// each group filled by one patch whose widest loop is the rim) come first
+// and are never regrouped; then `mode` groups the others. kInvalidArgument
+// names a group with an unknown or repeated id, fewer than 2 loops, or
+// loops sharing a vertex.
+Status GroupHoleLoops(const MeshData& mesh, const std::vector<HoleLoop>& loops,
+                      IslandMode mode,
+                      const std::vector<std::vector<int32_t>>& join,
+                      std::vector<int32_t>* rim, const Control& control = {});
+
 enum class FillStage { kTriangulate, kRefine, kFair };
 std::string_view FillStageName(FillStage s);  // "triangulate", ...
 
@@ -105,7 +137,14 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //  fairing_continuity  0, 1 or 2: minimizes the Laplacian energy of order
 //                   1, 2 or 3 (membrane, thin plate, minimum variation).
 //                   Default 1.
-//  selection        which holes (above).
+//  selection        which holes (above). A hole with islands is selected
+//                   by its rim: the islands come with it, whatever their
+//                   own sizes.
+//  islands          how loops are grouped into holes with islands
+//                   (IslandMode above). Default kAuto.
+//  join             groups of loop ids, each filled by one patch (joining
+//                   two borders of one piece, or islands kAuto misses).
+//                   Default none.
 //  threads          holes solved at once; 0: all cores. Default 0.
 //  repair           FillSoup only: repair the soup first (merge duplicate
 //                   vertices, drop degenerate and duplicate faces, orient);
@@ -129,6 +168,8 @@ struct FillOptions {
   double density = 1.4142135623730951;
   int fairing_continuity = 1;
   HoleSelection selection;
+  IslandMode islands = IslandMode::kAuto;
+  std::vector<std::vector<int32_t>> join;
   int threads = 0;
   bool repair = true;
   bool keep_polygons = false;
@@ -159,6 +200,11 @@ struct HoleReport {
   int32_t id = 0;
   int32_t boundary_vertices = 0;
   bool pinched = false;
+  // Holes with islands: on the rim, the ids of the island loops its patch
+  // joins (boundary_vertices counts the rim alone); on an island, the rim's
+  // id (its status is the rim's), else -1.
+  std::vector<int32_t> joined;
+  int32_t joined_to = -1;
   // The loop's size and place, in the mesh's units: its bounding-box
   // diagonal, its length, and the centroid of its edges (length-weighted).
   double diameter = 0, perimeter = 0;
@@ -238,6 +284,13 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
                        const HoleLoop& loop, const FillOptions& options,
                        const Control& control, int32_t first_new_id,
                        HolePatch* patch, HoleReport* report);
+// The same over a hole with islands: one patch of genus 0 bounded by every
+// loop of `loops` (the rim first), each run in its direction.
+Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
+                       const std::vector<const HoleLoop*>& loops,
+                       const FillOptions& options, const Control& control,
+                       int32_t first_new_id, HolePatch* patch,
+                       HoleReport* report);
 
 // Liepa refinement and, for FillStage::kFair, fairing of the patch's new
 // interior vertices (CGAL PMP on the patch and three rings of faces around

@@ -38,6 +38,14 @@ MeshData SubMesh(const MeshData& mesh, const std::vector<bool>& keep);
 Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
                 MeshData* holey, MeshData* removed);
 
+// CutHoles with an island in each hole: the first `island_triangles` its
+// growth removed (a disk around its start) stay, apart from its rim, so
+// each hole is a ring between two loops around a floating piece of
+// surface (what a scan leaves). `removed` is the ring.
+Status CutIslandHoles(const MeshData& mesh, int count, int triangles,
+                      int island_triangles, uint64_t seed, MeshData* holey,
+                      MeshData* removed);
+
 }  // namespace dot
 
 #endif  // DOT_HOLE_GENERATOR_H_

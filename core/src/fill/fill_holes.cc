@@ -169,9 +169,11 @@ std::string StopCause(const Status& s) {
   }
 }
 
+// One hole (a rim and its islands, or one loop): triangulate, refine and
+// fair, check.
 void FillOne(const MeshData& mesh, const MeshTopology& topo,
-             const HoleLoop& loop, const FillOptions& options,
-             const Control& control, HoleWork* w) {
+             const std::vector<const HoleLoop*>& loops,
+             const FillOptions& options, const Control& control, HoleWork* w) {
   const auto first_new = static_cast<int32_t>(mesh.vertices.size());
   HoleReport& r = w->report;
   RunTicker ticker(control, Stage::kValidate);
@@ -181,7 +183,7 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
   }
   w->started = true;
   auto t0 = Clock::now();
-  Status s = TriangulateHole(mesh, topo, loop, options, control, first_new,
+  Status s = TriangulateHole(mesh, topo, loops, options, control, first_new,
                              &w->patch, &r);
   r.triangulate_ms = MsSince(t0);
   if (s.code == StatusCode::kCancelled ||
@@ -257,6 +259,42 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     return;
   }
   r.status = HoleStatus::kFilled;
+}
+
+// A hole with islands is filled by one patch when one exists; when none
+// does (or the solver does not take that many loops), each of its loops is
+// filled alone, as without islands, and says why.
+void FillGroup(const MeshData& mesh, const MeshTopology& topo,
+               const std::vector<HoleLoop>& loops,
+               const std::vector<int32_t>& group, const FillOptions& options,
+               const Control& control, std::vector<HoleWork>* work) {
+  HoleWork& lead = (*work)[group[0]];
+  if (group.size() == 1) {
+    FillOne(mesh, topo, {&loops[group[0]]}, options, control, &lead);
+    return;
+  }
+  std::vector<const HoleLoop*> hole;
+  for (int32_t i : group) hole.push_back(&loops[i]);
+  const HoleReport before = lead.report;
+  FillOne(mesh, topo, hole, options, control, &lead);
+  if (!lead.status.ok() || lead.report.status == HoleStatus::kFilled) return;
+  const std::string why = "its islands could not be joined to it (" +
+                          lead.report.reason + "): filled alone";
+  lead.report = before;
+  lead.patch = {};
+  for (int32_t i : group) {
+    HoleWork& w = (*work)[i];
+    w.report.joined.clear();
+    w.report.joined_to = -1;
+    FillOne(mesh, topo, {&loops[i]}, options, control, &w);
+    if (!w.status.ok()) return;
+    const std::string own = w.report.reason;
+    w.report.reason =
+        i == group[0] ? why
+                      : "the hole of rim " + std::to_string(group[0]) +
+                            " could not be joined to this island: filled alone";
+    if (!own.empty()) w.report.reason += "; " + own;
+  }
 }
 
 // The patches merged so far, for the checks between holes (each hole was
@@ -460,6 +498,23 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
   std::vector<std::string> skip;
   out.status = Select(loops, options.selection, &skip);
   if (!out.status.ok()) return out;
+  std::vector<int32_t> rim;
+  out.status =
+      GroupHoleLoops(mesh, loops, options.islands, options.join, &rim, control);
+  if (!out.status.ok()) return out;
+  // Holes, each its rim's index first: an island goes with its rim when
+  // the rim is selected, whatever its own size; otherwise it is a hole of
+  // its own.
+  std::vector<std::vector<int32_t>> groups(loops.size());
+  for (size_t i = 0; i < loops.size(); ++i) {
+    const auto r = static_cast<size_t>(rim[i]);
+    if (r == i || !skip[r].empty()) {
+      groups[i].insert(groups[i].begin(), static_cast<int32_t>(i));
+    } else {
+      groups[r].push_back(static_cast<int32_t>(i));
+      skip[i].clear();
+    }
+  }
   RunTicker between(control, "hole filling");
   std::vector<HoleWork> work(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) {
@@ -471,6 +526,12 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
     Measure(mesh, loops[i], &r);
     r.reason = skip[i];
     if (options.dry_run && skip[i].empty()) r.status = HoleStatus::kListed;
+  }
+  for (size_t i = 0; i < loops.size(); ++i) {
+    for (size_t k = 1; k < groups[i].size(); ++k) {
+      work[i].report.joined.push_back(groups[i][k]);
+      work[groups[i][k]].report.joined_to = static_cast<int32_t>(i);
+    }
   }
   if (options.dry_run) {
     out.mesh = owned != nullptr ? std::move(*owned) : mesh;
@@ -484,8 +545,10 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
     out.report.total_ms = MsSince(t_start);
     return out;
   }
-  const int selected =
-      static_cast<int>(std::count(skip.begin(), skip.end(), std::string()));
+  int selected = 0;  // holes: a rim and its islands count once
+  for (size_t i = 0; i < loops.size(); ++i) {
+    selected += skip[i].empty() && !groups[i].empty();
+  }
   // A stop before the holes run leaves every selected hole not started.
   std::shared_ptr<const MeshTopology> topo;
   if (between.Poll()) topo = BuildMeshTopology(mesh);
@@ -503,8 +566,8 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
     tbb::task_arena arena(std::max(1, threads));
     arena.execute([&] {
       tbb::parallel_for(size_t{0}, loops.size(), size_t{1}, [&](size_t i) {
-        if (!skip[i].empty()) return;
-        FillOne(mesh, *topo, loops[i], options, hole_control, &work[i]);
+        if (!skip[i].empty() || groups[i].empty()) return;
+        FillGroup(mesh, *topo, loops, groups[i], options, hole_control, &work);
         if (on_progress && work[i].status.ok()) {  // stopped ones are not done
           std::lock_guard<std::mutex> lock(progress_mu);
           on_progress(FillPhase::kHoles, ++done, selected);
@@ -560,6 +623,21 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
         r.reason = refused + ": left open (fill it in a call of its own)";
       }
     }
+  }
+  // An island shares its rim's fate.
+  for (HoleWork& w : work) {
+    HoleReport& r = w.report;
+    if (r.joined_to < 0) continue;
+    const HoleWork& lead = work[r.joined_to];
+    r.status = lead.report.status;
+    r.reason = "island of hole " + std::to_string(r.joined_to) +
+               (lead.report.reason.empty() ? "" : ": " + lead.report.reason);
+    r.escalation = lead.report.escalation;
+    r.space = lead.report.space;
+    r.solver = lead.report.solver;
+  }
+  for (HoleWork& w : work) {
+    HoleReport& r = w.report;
     switch (r.status) {
       case HoleStatus::kFilled:
         ++out.report.filled;
@@ -612,6 +690,10 @@ std::string_view FillStageName(FillStage s) {
       return "fair";
   }
   return "?";
+}
+
+std::string_view IslandModeName(IslandMode m) {
+  return m == IslandMode::kOff ? "off" : "auto";
 }
 
 std::string_view FillPhaseName(FillPhase p) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// One hole -> one DOT patch: the loop as a Problem (boundary normals, the
+// One hole -> one DOT patch: its loops as a Problem (boundary normals, the
 // faces across its edges, its existing chords forbidden), the escalation
 // Delaunay -> edge protection -> all triangles, and the split of the faces
 // across boundary edges that edge protection subdivided.
@@ -16,46 +16,67 @@
 namespace dot {
 namespace {
 
+// The hole's loops, concatenated: mesh vertex, face across the edge to the
+// next vertex of the same loop, and that next position, per position.
+struct HoleRing {
+  std::vector<int32_t> vertices, faces, next;
+  std::vector<int32_t> sizes;  // per loop
+};
+
+HoleRing MakeRing(const std::vector<const HoleLoop*>& loops) {
+  HoleRing ring;
+  for (const HoleLoop* l : loops) {
+    const auto begin = static_cast<int32_t>(ring.vertices.size());
+    const auto n = static_cast<int32_t>(l->vertices.size());
+    ring.vertices.insert(ring.vertices.end(), l->vertices.begin(),
+                         l->vertices.end());
+    ring.faces.insert(ring.faces.end(), l->faces.begin(), l->faces.end());
+    for (int32_t i = 0; i < n; ++i) ring.next.push_back(begin + (i + 1) % n);
+    ring.sizes.push_back(n);
+  }
+  return ring;
+}
+
 // The hole as a Problem in work coordinates: the mesh's scaled by the
 // power of two that brings the rim to unit size (exact, see
 // polygon/unit_scale.h), so that normals, edge lengths and per-edge weights
 // neither overflow nor underflow at any finite scale (before: a mesh at
 // 1e160 had zero normals, one at 1e-160 an infinite area weight).
 Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
-                    const HoleLoop& loop, const FillOptions& options,
+                    const HoleRing& ring, const FillOptions& options,
                     UnitScale* scale) {
   Problem p;
-  const int32_t n = static_cast<int32_t>(loop.vertices.size());
-  for (int32_t v : loop.vertices) p.vertices.push_back(mesh.vertices[v]);
+  const auto n = static_cast<int32_t>(ring.vertices.size());
+  for (int32_t v : ring.vertices) p.vertices.push_back(mesh.vertices[v]);
   *scale = ChooseUnitScale(p.vertices);
   for (Vec3& v : p.vertices) v = scale->ToWork(v);
   auto work = [&](int32_t v) { return scale->ToWork(mesh.vertices[v]); };
   std::unordered_map<int32_t, int32_t> position;
   double perimeter = 0;
   for (int32_t i = 0; i < n; ++i) {
-    position[loop.vertices[i]] = i;
-    perimeter += Distance(p.vertices[i], p.vertices[(i + 1) % n]);
+    position[ring.vertices[i]] = i;
+    perimeter += Distance(p.vertices[i], p.vertices[ring.next[i]]);
     p.edge_face_normals.push_back(
-        Normalized(FaceCross(mesh.triangles[loop.faces[i]], work)));
+        Normalized(FaceCross(mesh.triangles[ring.faces[i]], work)));
   }
   for (int32_t i = 0; i < n; ++i) {
-    Vec3 sum = AreaWeightedNormal(mesh, topo, loop.vertices[i], work);
+    Vec3 sum = AreaWeightedNormal(mesh, topo, ring.vertices[i], work);
     if (Norm(sum) == 0) sum = p.edge_face_normals[i];
     if (Norm(sum) == 0) sum = {0, 0, 1};
     p.normals.push_back(Normalized(sum));
   }
-  // Chords the mesh already has: from each loop vertex, the corners of its
-  // faces that are later loop vertices, each once.
+  // Chords the mesh already has: from each hole vertex, the corners of its
+  // faces that are later hole vertices, each once.
   std::vector<int32_t> later;
   for (int32_t i = 0; i < n; ++i) {
-    const int32_t v = loop.vertices[i];
+    const int32_t v = ring.vertices[i];
     later.clear();
     for (int32_t k = topo.face_begin[v]; k < topo.face_begin[v + 1]; ++k) {
       for (int32_t w : mesh.triangles[topo.faces[k]]) {
         auto it = position.find(w);
         if (it == position.end() || it->second <= i) continue;
         const int32_t j = it->second;
-        if (j == i + 1 || (i == 0 && j == n - 1)) continue;
+        if (ring.next[i] == j || ring.next[j] == i) continue;
         later.push_back(j);
       }
     }
@@ -63,6 +84,7 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
     later.erase(std::unique(later.begin(), later.end()), later.end());
     for (int32_t j : later) p.forbidden_edges.emplace_back(i, j);
   }
+  if (ring.sizes.size() > 1) p.loop_sizes = ring.sizes;
   p.weights = options.weights;
   if (options.scale_free_weights && perimeter > 0) {
     const double edge = perimeter / n;
@@ -164,10 +186,20 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
                        const HoleLoop& loop, const FillOptions& options,
                        const Control& control, int32_t first_new_id,
                        HolePatch* patch, HoleReport* report) {
+  return TriangulateHole(mesh, topology, std::vector<const HoleLoop*>{&loop},
+                         options, control, first_new_id, patch, report);
+}
+
+Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
+                       const std::vector<const HoleLoop*>& loops,
+                       const FillOptions& options, const Control& control,
+                       int32_t first_new_id, HolePatch* patch,
+                       HoleReport* report) {
   *patch = {};
   UnitScale scale;
-  const Problem problem = HoleProblem(mesh, topology, loop, options, &scale);
-  const int32_t n = static_cast<int32_t>(loop.vertices.size());
+  const HoleRing hole = MakeRing(loops);
+  const Problem problem = HoleProblem(mesh, topology, hole, options, &scale);
+  const auto n = static_cast<int32_t>(hole.vertices.size());
   std::vector<Attempt> attempts = {
       {Escalation::kDelaunay, SearchSpace::kDelaunay, false},
       {Escalation::kProtectedEdges, SearchSpace::kDelaunay, true}};
@@ -180,6 +212,9 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
     Options o = options.triangulate;
     o.space = a.space;
     o.protect_edges = a.protect_edges;
+    // The faces around every loop fix its direction: the patch must agree
+    // with them.
+    o.reorient_loops = false;
     r = Triangulate(problem, o, control);
     report->escalation = a.escalation;
     if (r.status.ok()) break;
@@ -206,7 +241,7 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
   report->boundary_inserted = static_cast<int32_t>(r.inserted.size());
 
   auto global = [&](int32_t id) {
-    return id < n ? loop.vertices[id] : first_new_id + (id - n);
+    return id < n ? hole.vertices[id] : first_new_id + (id - n);
   };
   for (int32_t id = n; id < static_cast<int32_t>(r.vertices.size()); ++id) {
     patch->new_vertices.push_back(scale.ToCaller(r.vertices[id]));
@@ -220,17 +255,18 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
   // Inserted vertices, per split loop edge, in loop order.
   std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>> inserted;
   std::vector<int32_t> split;
-  const std::vector<int32_t>& ring = r.polygon;
-  for (size_t k = 0; k < ring.size(); ++k) {
-    if (ring[k] >= n) continue;
-    size_t j = (k + 1) % ring.size();
-    std::vector<int32_t> on_edge;
-    for (; ring[j] >= n; j = (j + 1) % ring.size()) {
-      on_edge.push_back(global(ring[j]));
+  for (const std::vector<int32_t>& ring : ResultLoops(r)) {
+    for (size_t k = 0; k < ring.size(); ++k) {
+      if (ring[k] >= n) continue;
+      size_t j = (k + 1) % ring.size();
+      std::vector<int32_t> on_edge;
+      for (; ring[j] >= n; j = (j + 1) % ring.size()) {
+        on_edge.push_back(global(ring[j]));
+      }
+      if (on_edge.empty()) continue;
+      inserted[{hole.vertices[ring[k]], hole.vertices[ring[j]]}] = on_edge;
+      split.push_back(hole.faces[ring[k]]);
     }
-    if (on_edge.empty()) continue;
-    inserted[{loop.vertices[ring[k]], loop.vertices[ring[j]]}] = on_edge;
-    split.push_back(loop.faces[ring[k]]);
   }
   std::sort(split.begin(), split.end());
   split.erase(std::unique(split.begin(), split.end()), split.end());

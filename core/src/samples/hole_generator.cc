@@ -253,8 +253,25 @@ MeshData SubMesh(const MeshData& mesh, const std::vector<bool>& keep) {
   return out;
 }
 
-Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
-                MeshData* holey, MeshData* removed) {
+namespace {
+
+// Whether the first `island` triangles of the hole's growth (a disk around
+// its start, since every prefix of the growth is one) keep off its rim:
+// every vertex of theirs has all its triangles in the hole.
+bool IslandInside(const Growth& g, int island) {
+  for (int k = 0; k < island; ++k) {
+    for (int32_t v : g.mesh.triangles[g.added[k]]) {
+      if (g.hole_degree[v] != g.topo.vertex_degree[v]) return false;
+    }
+  }
+  return true;
+}
+
+Status Cut(const MeshData& mesh, int count, int triangles, int island,
+           uint64_t seed, MeshData* holey, MeshData* removed) {
+  if (island < 0 || (island > 0 && island >= triangles)) {
+    return InvalidArgument("an island must have fewer triangles than its hole");
+  }
   std::vector<bool> in_hole(mesh.triangles.size(), false);
   std::vector<bool> near_hole(mesh.vertices.size(), false);
   const SideAdjacency sides = BuildSides(mesh);
@@ -266,27 +283,44 @@ Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
     if (!GrowOne(triangles, seed * 1000003 + attempt, &growth, &hole).ok()) {
       continue;
     }
+    if (island > 0 && !IslandInside(growth, island)) continue;
     bool apart = true;
     for (int32_t f : hole.removed) {
       for (int32_t v : mesh.triangles[f]) apart &= !near_hole[v];
     }
     if (!apart) continue;
     for (int32_t f : hole.removed) {
-      in_hole[f] = true;
       for (int32_t v : mesh.triangles[f]) near_hole[v] = true;
+    }
+    for (size_t k = island; k < growth.added.size(); ++k) {
+      in_hole[growth.added[k]] = true;
     }
     ++cut;
   }
   if (cut < count) {
-    return InvalidArgument("found room for only " + std::to_string(cut) +
-                           " separate holes of " + std::to_string(triangles) +
-                           " triangles");
+    return InvalidArgument(
+        "found room for only " + std::to_string(cut) + " separate holes of " +
+        std::to_string(triangles) + " triangles" +
+        (island > 0 ? " with an island of " + std::to_string(island) : ""));
   }
   std::vector<bool> kept(in_hole.size());
   for (size_t f = 0; f < in_hole.size(); ++f) kept[f] = !in_hole[f];
   *holey = SubMesh(mesh, kept);
   *removed = SubMesh(mesh, in_hole);
   return OkStatus();
+}
+
+}  // namespace
+
+Status CutHoles(const MeshData& mesh, int count, int triangles, uint64_t seed,
+                MeshData* holey, MeshData* removed) {
+  return Cut(mesh, count, triangles, 0, seed, holey, removed);
+}
+
+Status CutIslandHoles(const MeshData& mesh, int count, int triangles,
+                      int island_triangles, uint64_t seed, MeshData* holey,
+                      MeshData* removed) {
+  return Cut(mesh, count, triangles, island_triangles, seed, holey, removed);
 }
 
 }  // namespace dot
