@@ -237,14 +237,21 @@ Status ReadInput(const FillFlags& f, PolygonSoup* soup,
   return s;
 }
 
-// "joins islands 3, 5; " on a rim whose patch joins other loops.
-std::string JoinedNote(const v1::HoleReport& h) {
-  if (h.joined().empty()) return "";
-  std::string note = h.joined_size() == 1 ? "joins island " : "joins islands ";
-  for (int k = 0; k < h.joined_size(); ++k) {
-    note += (k ? ", " : "") + std::to_string(h.joined(k));
+// The note column: "pinched loop", "joins islands 3, 5" on a rim whose
+// patch joins other loops, and the reason, separated by "; ".
+std::string HoleNote(const v1::HoleReport& h) {
+  std::string note = h.pinched() ? "pinched loop" : "";
+  if (!h.joined().empty()) {
+    note += std::string(note.empty() ? "" : "; ") +
+            (h.joined_size() == 1 ? "joins island " : "joins islands ");
+    for (int k = 0; k < h.joined_size(); ++k) {
+      note += (k ? ", " : "") + std::to_string(h.joined(k));
+    }
   }
-  return note + "; ";
+  if (!h.reason().empty()) {
+    note += (note.empty() ? "" : "; ") + h.reason();
+  }
+  return note;
 }
 
 void PrintTable(const v1::FillReport& r) {
@@ -265,8 +272,7 @@ void PrintTable(const v1::FillReport& r) {
               << std::setw(8) << h.refined_vertices() << std::setw(7)
               << (h.faired() ? "yes" : "no") << std::setw(7) << std::fixed
               << std::setprecision(1) << ms << "  "
-              << (h.pinched() ? "pinched loop; " : "") << JoinedNote(h)
-              << h.reason() << "\n";
+              << HoleNote(h) << "\n";
     std::cout.unsetf(std::ios::fixed);
   }
 }
@@ -286,8 +292,7 @@ void PrintListing(const std::string& input, const v1::FillReport& r) {
               << std::setw(14) << h.perimeter() << "  " << std::left
               << std::setw(40) << centroid.str() << std::setw(9)
               << HoleStatusName(wire::HoleStatusFromWire(h.status()))
-              << std::right << (h.pinched() ? "pinched loop; " : "")
-              << JoinedNote(h) << h.reason() << "\n";
+              << std::right << HoleNote(h) << "\n";
   }
   std::cout << input << ": " << r.loops() << " holes, " << r.listed()
             << " would be filled"

@@ -137,7 +137,7 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
 void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
   struct HolesFlags {
     std::string mesh, out, removed;
-    int count = 10, triangles = 200;
+    int count = 10, triangles = 200, island = 0;
     uint64_t seed = 1;
   };
   auto h = std::make_shared<HolesFlags>();
@@ -151,6 +151,11 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       ->capture_default_str();
   holes->add_option("-t,--triangles", h->triangles, "triangles per hole")
       ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
+  holes->add_option("--island", h->island,
+                    "leave an island of this many triangles floating in "
+                    "each hole (0: none); the hole is the ring around it")
+      ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   holes->add_option("--seed", h->seed, "random seed")->capture_default_str();
   holes->add_option("-o,--output", h->out, "the mesh with holes")->required();
@@ -172,7 +177,8 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
                       (p.stem().string() + ".removed" + p.extension().string()))
                          .string();
     }
-    s = CutHoles(mesh, h->count, h->triangles, h->seed, &holey, &removed);
+    s = CutIslandHoles(mesh, h->count, h->triangles, h->island, h->seed,
+                       &holey, &removed);
     if (s.ok()) s = WriteMeshFile(h->out, holey);
     if (s.ok()) s = WriteMeshFile(removed_path, removed);
     if (!s.ok()) {
@@ -181,8 +187,12 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       return;
     }
     if (!ctx->quiet) {
-      std::cout << h->count << " holes of " << h->triangles << " triangles -> "
-                << h->out << " (removed patches: " << removed_path << ")\n";
+      std::cout << h->count << " holes of " << h->triangles << " triangles"
+                << (h->island > 0 ? " around islands of " +
+                                        std::to_string(h->island)
+                                  : std::string())
+                << " -> " << h->out << " (removed patches: " << removed_path
+                << ")\n";
     }
   });
 }

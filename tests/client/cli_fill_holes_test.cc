@@ -79,6 +79,43 @@ TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
 }
 
 // A scan as modelling tools export it: quads with colours and UVs.
+TEST_F(FillHolesCliTest, HolesWithIslandsJoinOnePatchRemoteAndLocal) {
+  auto r = Dotctl("generate holes " + Path("torus.off") +
+                  " -k 2 -t 120 --island 20 --seed 5 -o " + Path("ring.off"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("around islands of 20"), std::string::npos) << r.out;
+  r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " +
+             Path("remote.ply") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"joined\":["), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"joined_to\":"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
+  r = Dotctl("fill-holes --local " + Path("ring.off") + " -o " +
+             Path("local.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("4 of 4 holes filled, closed"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("joins island "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("island of hole "), std::string::npos) << r.out;
+  MeshData remote, local;
+  ASSERT_TRUE(ReadMeshFile(Path("remote.ply"), &remote).ok());
+  ASSERT_TRUE(ReadMeshFile(Path("local.ply"), &local).ok());
+  EXPECT_EQ(remote.triangles, local.triangles);
+  // Off: no loop is joined; explicit groups are checked by name.
+  r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " +
+             Path("off.ply") + " --islands off");
+  EXPECT_EQ(r.out.find("joins island"), std::string::npos) << r.out;
+  r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " +
+             Path("x.ply") + " --join 0,9");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("join group 0: there is no hole 9"), std::string::npos)
+      << r.out;
+  r = Dotctl("fill-holes --local " + Path("ring.off") + " --join 3");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("needs at least 2 hole ids"), std::string::npos)
+      << r.out;
+}
+
 TEST_F(FillHolesCliTest, LocalFillKeepsQuadsColoursAndUvs) {
   {
     std::ofstream obj(Path("quads.obj"));
