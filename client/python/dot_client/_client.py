@@ -501,6 +501,8 @@ class Client:
                    skip_longest: Optional[bool] = None,
                    holes: Optional[Sequence[int]] = None,
                    loops_through: Optional[Sequence[int]] = None,
+                   islands: Optional[str] = None,
+                   join: Optional[Sequence[Sequence[int]]] = None,
                    weights: Optional[WeightsLike] = None,
                    area: Optional[float] = None,
                    perimeter: Optional[float] = None,
@@ -541,7 +543,11 @@ class Client:
         these loop ids, as numbered in the report), ``loops_through``
         (only the loops through these vertex ids; a vertex on no border
         loop is INVALID_ARGUMENT); a hole is filled when it passes every
-        rule given, the others are reported ``"skipped"``. Weights: leave
+        rule given, the others are reported ``"skipped"``. Holes with
+        islands: ``islands`` ``"auto"`` (the default) joins each island
+        floating in a hole to its rim in one patch, ``"off"`` fills every
+        loop alone; ``join`` names groups of loop ids each filled by one
+        patch (``[(3, 7)]``). Weights: leave
         them unset for the hole-filling default (squared dihedral 1, area
         0.01, per hole scale: the ``"smooth"`` preset), or give
         ``weights`` (a :class:`Weights`, a :data:`WEIGHT_PRESETS` name or
@@ -582,7 +588,8 @@ class Client:
         o = FillOptions.merged(
             options, stage=stage, max_hole_edges=max_hole_edges,
             max_hole_diameter=max_hole_diameter, skip_longest=skip_longest,
-            holes=holes, loops_through=loops_through, weights=weights,
+            holes=holes, loops_through=loops_through, islands=islands,
+            join=join, weights=weights,
             area=area, perimeter=perimeter,
             normal_deviation=normal_deviation, shape=shape,
             dihedral=dihedral, squared_dihedral=squared_dihedral,

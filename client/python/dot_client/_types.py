@@ -232,6 +232,9 @@ class HoleReport(_Plain):
     ``escalation``, the search step that made the patch, is
     ``"delaunay"``, ``"protected_edges"``, ``"all_triangles"`` or ``""``
     (no patch); ``split_faces`` lists input faces split by edge protection.
+    Holes with islands: on a rim, ``joined`` lists the island loops its
+    patch joins; on an island, ``joined_to`` is its rim's id (None
+    otherwise) and its status is the rim's.
     (The wire carries ``status`` and ``escalation`` as the enums
     ``HoleStatus`` and ``Escalation``; these are their names.)"""
     id: int = 0
@@ -256,11 +259,14 @@ class HoleReport(_Plain):
     diameter: float = 0.0
     perimeter: float = 0.0
     centroid: Tuple[float, ...] = ()
+    joined: List[int] = field(default_factory=list)
+    joined_to: Optional[int] = None
 
     @classmethod
     def from_proto(cls, m: Any) -> "HoleReport":
         return _scalars(
-            cls, m, centroid=tuple(m.centroid),
+            cls, m, centroid=tuple(m.centroid), joined=list(m.joined),
+            joined_to=m.joined_to if m.HasField("joined_to") else None,
             status=_enum_name(m.status, pb.HoleStatus, "HOLE_STATUS_"),
             escalation=_enum_name(m.escalation, pb.Escalation, "ESCALATION_",
                                   zero=""),
@@ -679,7 +685,7 @@ def _ids(name: str, value: Any, minimum: int, maximum: int) -> Tuple[int, ...]:
     if isinstance(value, (str, bytes)) or not isinstance(
             value, (Sequence, np.ndarray)):
         raise InvalidInput(f"{name} must be a list of "
-                           f"{'hole' if name == 'holes' else 'vertex'} ids")
+                           f"{'hole' if name == 'holes' or name.startswith('join') else 'vertex'} ids")
     return tuple(check.integer(f"{name}[{i}]", h, minimum=minimum,
                                maximum=maximum) for i, h in enumerate(value))
 
@@ -704,6 +710,11 @@ class FillOptions(_Options):
     through these vertex ids, as sent; a vertex on no border loop is
     refused; empty: all).
 
+    Holes with islands: ``islands`` ``"auto"`` (default) joins each island
+    (a piece of surface floating in a hole) to the rim around it in one
+    patch, ``"off"`` fills every loop alone; ``join``: groups of loop ids,
+    each filled by one patch (e.g. ``[(3, 7)]``).
+
     ``density``: refinement density factor (0, the default: sqrt(2);
     else 0.1 .. 100). ``fairing_continuity``: 0, 1 or 2 (None, the
     default: 1). ``no_repair``: use the mesh exactly as sent (default
@@ -724,6 +735,8 @@ class FillOptions(_Options):
     skip_longest: bool = False
     holes: Tuple[int, ...] = ()
     loops_through: Tuple[int, ...] = ()
+    islands: str = "auto"
+    join: Tuple[Tuple[int, ...], ...] = ()
     density: float = 0.0
     fairing_continuity: Optional[int] = None
     no_repair: bool = False
@@ -752,6 +765,18 @@ class FillOptions(_Options):
         _set(self, "holes", _ids("holes", self.holes, -2**31, 2**31 - 1))
         _set(self, "loops_through", _ids("loops_through", self.loops_through,
                                          0, check.UINT32_MAX))
+        _set(self, "islands", check.choice("islands", self.islands,
+                                           ["auto", "off"]))
+        if isinstance(self.join, (str, bytes)):
+            raise InvalidInput("join must be groups of loop ids, e.g. "
+                               "[(3, 7)]")
+        groups = []
+        for i, group in enumerate(self.join):
+            ids = _ids(f"join[{i}]", group, 0, 2**31 - 1)
+            if len(ids) < 2:
+                raise InvalidInput(f"join[{i}] names fewer than 2 loops")
+            groups.append(ids)
+        _set(self, "join", tuple(groups))
         d = check.number("density", self.density)
         if d != 0 and not 0.1 <= d <= 100:
             raise InvalidInput(
@@ -785,6 +810,9 @@ class FillOptions(_Options):
         o.skip_longest = self.skip_longest
         o.holes.extend(self.holes)
         o.loops_through.extend(self.loops_through)
+        o.islands = pb.ISLANDS_OFF if self.islands == "off" else pb.ISLANDS_AUTO
+        for group in self.join:
+            o.join.add().loops.extend(group)
         o.density = self.density
         if self.fairing_continuity is not None:
             o.fairing_continuity = self.fairing_continuity
