@@ -271,8 +271,7 @@ void PrintTable(const v1::FillReport& r) {
               << std::right << std::setw(8) << h.boundary_inserted()
               << std::setw(8) << h.refined_vertices() << std::setw(7)
               << (h.faired() ? "yes" : "no") << std::setw(7) << std::fixed
-              << std::setprecision(1) << ms << "  "
-              << HoleNote(h) << "\n";
+              << std::setprecision(1) << ms << "  " << HoleNote(h) << "\n";
     std::cout.unsetf(std::ios::fixed);
   }
 }

@@ -152,9 +152,10 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
   holes->add_option("-t,--triangles", h->triangles, "triangles per hole")
       ->check(CLI::Range(1, 100000000))
       ->capture_default_str();
-  holes->add_option("--island", h->island,
-                    "leave an island of this many triangles floating in "
-                    "each hole (0: none); the hole is the ring around it")
+  holes
+      ->add_option("--island", h->island,
+                   "leave an island of this many triangles floating in "
+                   "each hole (0: none); the hole is the ring around it")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   holes->add_option("--seed", h->seed, "random seed")->capture_default_str();
@@ -177,8 +178,8 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
                       (p.stem().string() + ".removed" + p.extension().string()))
                          .string();
     }
-    s = CutIslandHoles(mesh, h->count, h->triangles, h->island, h->seed,
-                       &holey, &removed);
+    s = CutIslandHoles(mesh, h->count, h->triangles, h->island, h->seed, &holey,
+                       &removed);
     if (s.ok()) s = WriteMeshFile(h->out, holey);
     if (s.ok()) s = WriteMeshFile(removed_path, removed);
     if (!s.ok()) {
@@ -188,9 +189,9 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
     }
     if (!ctx->quiet) {
       std::cout << h->count << " holes of " << h->triangles << " triangles"
-                << (h->island > 0 ? " around islands of " +
-                                        std::to_string(h->island)
-                                  : std::string())
+                << (h->island > 0
+                        ? " around islands of " + std::to_string(h->island)
+                        : std::string())
                 << " -> " << h->out << " (removed patches: " << removed_path
                 << ")\n";
     }

@@ -45,9 +45,9 @@ int main(int argc, char** argv) {
   app.add_option(
          "--only", only,
          "run only these: curves, holes, gk, optimality, service, fill, "
-         "scan, loops")
+         "scan, loops, islands")
       ->check(CLI::IsMember({"curves", "holes", "gk", "optimality", "service",
-                             "fill", "scan", "loops"}));
+                             "fill", "scan", "loops", "islands"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);
@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   if (wanted("fill")) invalid += dot::bench::RunFill(config, body);
   if (wanted("scan")) invalid += dot::bench::RunScan(config, body);
   if (wanted("loops")) invalid += dot::bench::RunLoops(config, body);
+  if (wanted("islands")) invalid += dot::bench::RunIslands(config, body);
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count() /

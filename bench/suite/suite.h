@@ -45,6 +45,7 @@ int RunScan(const Config& config, std::ostream& report);
 // Several loops into one surface (fig_loops.cc); returns the outputs that
 // failed or did not validate.
 int RunLoops(const Config& config, std::ostream& report);
+int RunIslands(const Config& config, std::ostream& report);
 
 // Formatting shared by the figures.
 std::string Fixed(double v, int digits = 1);  // "-" for NaN

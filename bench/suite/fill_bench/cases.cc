@@ -36,25 +36,6 @@ std::string MeshPath(const Config& config, const std::string& name) {
   return ec ? "" : path;
 }
 
-bool Repaired(const PolygonSoup& soup, const std::string& what, MeshData* out) {
-  RepairReport rr;
-  const Status s = RepairMesh(soup, out, &rr);
-  if (!s.ok()) {
-    std::cerr << "dot-bench fill: " << what << ": " << s.message << "\n";
-  }
-  return s.ok();
-}
-
-bool LoadMesh(const Config& config, const std::string& name, MeshData* out) {
-  const std::string path = MeshPath(config, name);
-  PolygonSoup soup;
-  if (path.empty() || !ReadPolygonSoupFile(path, &soup).ok()) {
-    std::cerr << "dot-bench fill: cannot read mesh " << name << "\n";
-    return false;
-  }
-  return Repaired(soup, name, out);
-}
-
 // `pairs` pinched holes: a hole A grown with GrowHole (`ta` triangles) and a
 // hole B of `tb` triangles grown from a face at one of A's boundary
 // vertices v, never touching A elsewhere; so the border of A and B passes v
@@ -167,6 +148,25 @@ struct CutSpec {
 };
 
 }  // namespace
+
+bool Repaired(const PolygonSoup& soup, const std::string& what, MeshData* out) {
+  RepairReport rr;
+  const Status s = RepairMesh(soup, out, &rr);
+  if (!s.ok()) {
+    std::cerr << "dot-bench fill: " << what << ": " << s.message << "\n";
+  }
+  return s.ok();
+}
+
+bool LoadMesh(const Config& config, const std::string& name, MeshData* out) {
+  const std::string path = MeshPath(config, name);
+  PolygonSoup soup;
+  if (path.empty() || !ReadPolygonSoupFile(path, &soup).ok()) {
+    std::cerr << "dot-bench fill: cannot read mesh " << name << "\n";
+    return false;
+  }
+  return Repaired(soup, name, out);
+}
 
 std::vector<Case> MakeCases(const Config& config) {
   std::vector<Case> cases;

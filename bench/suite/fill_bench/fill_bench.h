@@ -38,6 +38,9 @@ struct Case {
 };
 
 std::vector<Case> MakeCases(const Config& config);
+// A libcgal-demo mesh by name ("elephant"), repaired; false (said on
+// stderr) when it cannot be read.
+bool LoadMesh(const Config& config, const std::string& name, MeshData* out);
 
 // ---- judge.cc
 // Holes as the comparison counts them: loops that share a vertex (a

@@ -85,17 +85,17 @@ struct HoleSelection {
 // the rims of islands (pieces of surface floating inside it); one patch of
 // genus 0 joins them (Triangulate over several loops, each loop keeping its
 // direction, so the patch agrees with the faces around every loop).
-//  kAuto  loop I is an island of loop R when R is the innermost loop around
-//         I and lies on another piece of the mesh (faces joined by shared
-//         vertices). "Around": R is wider (bounding-box diagonal) and, seen
-//         along R's vector-area normal (Newell's), the centre of I's
-//         vertices is inside R (non-zero winding number) and within half
-//         R's diameter of R's mean plane. The centre rather than every
-//         vertex: on a curved surface an island's own border may overhang
-//         its rim's outline where the hole is one face wide. The innermost
-//         loop is the narrowest one around; a loop inside another of its
-//         own piece (the inner rim of a ring-shaped island) is a rim of its
-//         own, and an island's rim is never itself an island.
+//  kAuto  loop I is an island of loop R when I is the outer border (the
+//         widest loop, by bounding-box diagonal) of a piece of the mesh
+//         (faces joined by shared vertices) with fewer faces than R's
+//         piece, R is wider than I, R's bounding box holds the centre of
+//         I's vertices, and among such loops R is the nearest to I (mean
+//         distance from I's vertices to R's, at most R's diameter). A
+//         piece's other loops are its
+//         own holes (the inner rim of a ring-shaped island), and a loop
+//         that is an island is never a rim. Topology and distance rather
+//         than a projection: a hole that wraps a limb has a rim far from
+//         planar, around its island in no single view.
 //  kOff   every loop is a hole of its own.
 enum class IslandMode { kAuto, kOff };
 std::string_view IslandModeName(IslandMode m);  // "auto", "off"

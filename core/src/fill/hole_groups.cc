@@ -1,95 +1,74 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// Holes with islands: which border loops one patch joins. Automatic: a loop
-// is an island of the innermost loop around it, when that loop belongs to
-// another piece of the mesh. Explicit: groups of loop ids.
+// Holes with islands: which border loops one patch joins. Automatic: the
+// outer border of a smaller piece of the mesh is an island of the nearest
+// wider loop of a larger piece whose box holds it. Explicit: groups of loop
+// ids.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
 #include "dot/fill_holes.h"
 #include "mesh/face_tree.h"
-#include "polygon/plane_fit.h"
 #include "util/run_control.h"
 #include "util/union_find.h"
 
 namespace dot {
 namespace {
 
-// A loop seen along its least-squares plane's normal.
+// A loop's vertices, their centre and box.
 struct Outline {
-  Vec3 origin, u, v, normal;  // orthonormal frame of the plane
-  std::vector<double> x, y;   // the loop's vertices in (u, v)
+  std::vector<Vec3> points;
+  Vec3 centre;
   Box3 box;
   double diameter = 0;
 };
 
 Outline MakeOutline(const MeshData& mesh, const HoleLoop& loop) {
   Outline o;
-  std::vector<Vec3> points;
+  Vec3 sum;
   for (int32_t id : loop.vertices) {
-    points.push_back(mesh.vertices[id]);
+    o.points.push_back(mesh.vertices[id]);
     o.box.Add(mesh.vertices[id]);
+    sum = sum + mesh.vertices[id];
   }
-  // Newell's vector area: the direction in which the loop encloses the
-  // most area, also for a loop far from planar (the rim of a hole over the
-  // tip of a limb), where a least-squares plane may lie across the hole.
-  Vec3 area, centroid;
-  for (size_t i = 0; i < points.size(); ++i) {
-    area = area + Cross(points[i], points[(i + 1) % points.size()]);
-    centroid = centroid + points[i];
-  }
-  o.origin = (1.0 / static_cast<double>(points.size())) * centroid;
-  o.normal = Norm(area) > 0 ? Normalized(area) : FitPlane(points).normal;
-  const Vec3 axis = std::abs(o.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  o.u = Normalized(Cross(o.normal, axis));
-  o.v = Cross(o.normal, o.u);
-  for (const Vec3& p : points) {
-    o.x.push_back(Dot(p - o.origin, o.u));
-    o.y.push_back(Dot(p - o.origin, o.v));
-  }
+  o.centre = (1.0 / static_cast<double>(o.points.size())) * sum;
   o.diameter = loop.diameter;
   return o;
 }
 
-// Winding number of the outline around (px, py).
-int Winding(const Outline& o, double px, double py) {
-  int w = 0;
-  const size_t n = o.x.size();
-  for (size_t i = 0; i < n; ++i) {
-    const size_t j = (i + 1) % n;
-    const double ax = o.x[i] - px, ay = o.y[i] - py;
-    const double bx = o.x[j] - px, by = o.y[j] - py;
-    const double side = ax * by - ay * bx;
-    if (ay <= 0 && by > 0 && side > 0) ++w;
-    if (ay > 0 && by <= 0 && side < 0) --w;
+bool Holds(const Box3& box, const Vec3& p) {
+  return p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y &&
+         p.y <= box.hi.y && p.z >= box.lo.z && p.z <= box.hi.z;
+}
+
+// Mean distance from a vertex of `inner` to the nearest vertex of `outer`.
+double MeanGap(const Outline& inner, const Outline& outer) {
+  double sum = 0;
+  for (const Vec3& p : inner.points) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Vec3& q : outer.points) best = std::min(best, Distance(p, q));
+    sum += best;
   }
-  return w;
+  return sum / static_cast<double>(inner.points.size());
 }
 
-// Whether `outer` is around the centre of a loop: seen along its normal the
-// centre is inside it, within half its diameter of its plane. The centre,
-// not every vertex: a ring hole one face wide on a curved surface lets an
-// island's own border overhang its rim's outline.
-bool Around(const Outline& outer, const Vec3& centre) {
-  const Vec3 d = centre - outer.origin;
-  return std::abs(Dot(d, outer.normal)) <= 0.5 * outer.diameter &&
-         Winding(outer, Dot(d, outer.u), Dot(d, outer.v)) != 0;
-}
-
-// The piece of the mesh (faces joined by shared vertices) of each loop.
-std::vector<int32_t> LoopComponents(const MeshData& mesh,
-                                    const std::vector<HoleLoop>& loops) {
+// The piece of the mesh (faces joined by shared vertices) of each loop,
+// and the faces of each piece (by its root vertex).
+std::vector<int32_t> LoopPieces(const MeshData& mesh,
+                                const std::vector<HoleLoop>& loops,
+                                std::vector<int64_t>* faces) {
   UnionFind pieces(mesh.vertices.size());
   for (const Triangle& t : mesh.triangles) {
     pieces.Join(t[0], t[1]);
     pieces.Join(t[1], t[2]);
   }
-  std::vector<int32_t> component;
-  for (const HoleLoop& l : loops) {
-    component.push_back(pieces.Find(l.vertices[0]));
-  }
-  return component;
+  faces->assign(mesh.vertices.size(), 0);
+  for (const Triangle& t : mesh.triangles) ++(*faces)[pieces.Find(t[0])];
+  std::vector<int32_t> piece;
+  for (const HoleLoop& l : loops) piece.push_back(pieces.Find(l.vertices[0]));
+  return piece;
 }
 
 Status ExplicitGroups(const std::vector<HoleLoop>& loops,
@@ -146,44 +125,55 @@ Status GroupHoleLoops(const MeshData& mesh, const std::vector<HoleLoop>& loops,
   if (!s.ok() || mode == IslandMode::kOff || loops.size() < 2) return s;
 
   RunTicker ticker(control, "the search for islands");
-  const std::vector<int32_t> component = LoopComponents(mesh, loops);
+  std::vector<int64_t> faces;
+  const std::vector<int32_t> piece = LoopPieces(mesh, loops, &faces);
   std::vector<Outline> outlines;
   for (const HoleLoop& l : loops) outlines.push_back(MakeOutline(mesh, l));
-  // Widest first: the innermost loop around a loop is the last one found.
-  std::vector<int32_t> order(loops.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
-    return loops[a].diameter > loops[b].diameter;
-  });
-  for (size_t k = 0; k < order.size(); ++k) {
-    const int32_t island = order[k];
-    if (named[island]) continue;
-    const Outline& in = outlines[island];
-    const Vec3& centre = in.origin;
-    int32_t innermost = -1;
-    for (size_t j = 0; j < k; ++j) {
+  // A piece's widest loop is its outer border; its other loops are holes.
+  std::vector<int32_t> widest(mesh.vertices.size(), -1);
+  for (const HoleLoop& l : loops) {
+    int32_t& w = widest[piece[l.id]];
+    if (w < 0 || l.diameter > loops[w].diameter) w = l.id;
+  }
+  // Islands first, then their rims: a loop that is an island cannot be a
+  // rim (the outer border of a ring-shaped island is joined to the hole
+  // around it; a further island inside the ring joins the ring's hole).
+  auto candidates = [&](int32_t i, const std::vector<bool>* islands,
+                        int32_t* nearest) -> Status {
+    *nearest = -1;
+    if (named[i] || widest[piece[i]] != i) return OkStatus();
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t r = 0; r < loops.size(); ++r) {
       if (!ticker.Tick()) return ticker.status();
-      const int32_t outer = order[j];
-      const Outline& out = outlines[outer];
-      if (!(out.diameter > in.diameter)) continue;
-      // Cheap reject: the centre must be within half a diameter of the
-      // outer loop's box (its plane test allows that much).
-      Box3 reach = out.box;
-      const Vec3 pad{0.5 * out.diameter, 0.5 * out.diameter,
-                     0.5 * out.diameter};
-      reach.lo = reach.lo - pad;
-      reach.hi = reach.hi + pad;
-      Box3 point;
-      point.Add(centre);
-      if (!reach.Meets(point)) continue;
-      if (Around(out, centre)) innermost = outer;
+      if (piece[r] == piece[i] || named[r] ||
+          faces[piece[r]] <= faces[piece[i]] ||
+          !(loops[r].diameter > loops[i].diameter) ||
+          !Holds(outlines[r].box, outlines[i].centre) ||
+          (islands != nullptr && (*islands)[r])) {
+        continue;
+      }
+      // Near: within the rim's diameter, on average.
+      const double gap = MeanGap(outlines[i], outlines[r]);
+      if (gap <= loops[r].diameter && gap < best) {
+        best = gap;
+        *nearest = static_cast<int32_t>(r);
+      }
     }
-    // An island's rim is a hole's rim, never itself an island.
-    if (innermost < 0 || component[innermost] == component[island] ||
-        named[innermost] || (*rim)[innermost] != innermost) {
-      continue;
-    }
-    (*rim)[island] = innermost;
+    return OkStatus();
+  };
+  std::vector<bool> island(loops.size(), false);
+  for (size_t i = 0; i < loops.size(); ++i) {
+    int32_t r = -1;
+    Status c = candidates(static_cast<int32_t>(i), nullptr, &r);
+    if (!c.ok()) return c;
+    island[i] = r >= 0;
+  }
+  for (size_t i = 0; i < loops.size(); ++i) {
+    if (!island[i]) continue;
+    int32_t r = -1;
+    Status c = candidates(static_cast<int32_t>(i), &island, &r);
+    if (!c.ok()) return c;
+    if (r >= 0) (*rim)[i] = r;
   }
   return OkStatus();
 }

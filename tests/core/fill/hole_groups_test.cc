@@ -68,7 +68,7 @@ int64_t Euler(const MeshData& m) {
          static_cast<int64_t>(m.triangles.size());
 }
 
-TEST(GroupHoleLoopsTest, AnIslandJoinsTheInnermostRimOfAnotherPiece) {
+TEST(GroupHoleLoopsTest, AnIslandJoinsTheNearestRimOfALargerPiece) {
   // A 20 x 20 grid; a square hole [3, 17) holding a ring-shaped island
   // [5, 15) minus [7, 13), which holds a small island [9, 11).
   const MeshData m = GridWithout(20, [](int i, int j) {
@@ -94,7 +94,8 @@ TEST(GroupHoleLoopsTest, AnIslandJoinsTheInnermostRimOfAnotherPiece) {
   ASSERT_TRUE(
       GroupHoleLoops(m, loops, IslandMode::kAuto, {{small, rim}}, &group).ok());
   EXPECT_EQ(group[small], rim);
-  EXPECT_EQ(group[ring_out], ring_out);  // its rim is taken
+  // Its rim is taken: the nearest rim left around it is the grid's border.
+  EXPECT_EQ(group[ring_out], outer);
   EXPECT_EQ(group[ring_in], ring_in);
 }
 
