@@ -121,6 +121,10 @@ std::string DescribeOutcome(const CallOutcome& o) {
   if (m.loop_sizes_size() > 1) {
     s << " joining " << m.loop_sizes_size() << " loops";
     for (uint32_t l : m.reversed_loops()) s << " (loop " << l << " reversed)";
+    if (m.bridges_size() > 0) {
+      s << " by " << m.bridges_size() / 2
+        << " bridges first (approximate: optimal for them)";
+    }
   }
   s << ", " << m.solver() << " over " << m.search_space_used();
   if (!m.delaunay_backend().empty()) s << " (" << m.delaunay_backend() << ")";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <random>
 
 #include "measure.h"
 #include "suite.h"
@@ -36,6 +37,33 @@ Problem ExactTube(int n) {
   return p;
 }
 
+// A unit sphere with `k` caps cut away around fixed directions (the axes,
+// then two diagonals), each rim a circle of n points at height h along its
+// direction, with seeded noise of a tenth of the point spacing. The rims
+// run so that the sphere's remaining surface is on their left.
+Problem SphereCaps(int k, int n, double h, uint64_t seed) {
+  const double s = 1 / std::sqrt(3.0);
+  const Vec3 dirs[8] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0},
+                        {0, 0, 1}, {0, 0, -1}, {s, s, s}, {-s, -s, s}};
+  std::mt19937_64 rng(seed);
+  const double r = std::sqrt(1 - h * h);
+  std::uniform_real_distribution<double> noise(-0.1, 0.1);
+  Problem p;
+  for (int l = 0; l < k; ++l) {
+    const Vec3& d = dirs[l];
+    const Vec3 helper = std::fabs(d.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
+    const Vec3 u = Normalized(Cross(d, helper)), v = Cross(d, u);
+    const double spacing = 2 * kPi * r / n;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * kPi * i / n;
+      p.vertices.push_back(h * d + r * std::cos(a) * u + r * std::sin(a) * v +
+                           spacing * Vec3{noise(rng), noise(rng), noise(rng)});
+    }
+    p.loop_sizes.push_back(n);
+  }
+  return p;
+}
+
 }  // namespace
 
 int RunLoops(const Config& config, std::ostream& report) {
@@ -56,6 +84,14 @@ int RunLoops(const Config& config, std::ostream& report) {
                      TwoRims(LoopPair::kIsland, n, 2000 + n)});
   }
   cases.push_back({"cocircular tube 2 x 200", ExactTube(200)});
+  // Three and more loops (bridges first: an approximation).
+  cases.push_back({"sphere - 3 caps, 3 x 200", SphereCaps(3, 200, 0.85, 3)});
+  cases.push_back({"sphere - 4 caps, 4 x 125", SphereCaps(4, 125, 0.85, 4)});
+  cases.push_back({"sphere - 6 caps, 6 x 12", SphereCaps(6, 12, 0.85, 6)});
+  if (!config.quick) {
+    cases.push_back({"sphere - 8 caps, 8 x 50", SphereCaps(8, 50, 0.93, 8)});
+    cases.push_back({"sphere - 6 caps, 6 x 200", SphereCaps(6, 200, 0.85, 60)});
+  }
   struct Row {
     std::string name, solver;
     int n;
@@ -101,11 +137,13 @@ int RunLoops(const Config& config, std::ostream& report) {
         << "," << r.r.stats.dp_states << "," << r.r.triangles.size() << ","
         << r.r.status.ok() << "\n";
   }
-  report << "## Several loops: one surface joining two rims\n\n"
+  report << "## Several loops: one surface joining the rims\n\n"
          << "Tubes (rims of radius 1 and 0.7, 0.8 apart) and holes with an "
             "island (radius 0.35, nearly coplanar), seeded noise, edge "
             "protection on; the cocircular tube has none (its Delaunay "
-            "tetrahedralization has Θ(n²) faces). Every output validated "
+            "tetrahedralization has Θ(n²) faces). Spheres with k caps cut "
+            "away: k rims (three or more loops: bridges first, then the "
+            "optimum for them). Every output validated "
             "(genus 0, boundary = the loops, exact intersection test): "
          << invalid << " invalid. Data: `loops.csv`.\n\n"
          << "| case | solver | ms | peak heap | candidates | DP states | "

@@ -106,6 +106,24 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
       problem->loop_sizes.push_back(static_cast<int32_t>(size));
     }
   }
+  const auto& forbidden = request.polygon().forbidden_edges();
+  if (forbidden.size() % 2 != 0) {
+    return InvalidArgument("polygon.forbidden_edges has an odd count (" +
+                           std::to_string(forbidden.size()) +
+                           "): give pairs of vertex indices");
+  }
+  problem->forbidden_edges.clear();
+  for (int i = 0; i + 1 < forbidden.size(); i += 2) {
+    const uint32_t n = static_cast<uint32_t>(c.size() / 3);
+    if (forbidden[i] >= n || forbidden[i + 1] >= n) {
+      return InvalidArgument(
+          "polygon.forbidden_edges pair " + std::to_string(i / 2) +
+          " names vertex " +
+          std::to_string(std::max(forbidden[i], forbidden[i + 1])) +
+          "; the polygon has " + std::to_string(n));
+    }
+    problem->forbidden_edges.emplace_back(forbidden[i], forbidden[i + 1]);
+  }
   problem->weights = FromWire(request.weights());
   options->reorient_loops = !request.options().keep_loop_directions();
   options->space = FromWire(request.options().search_space());
@@ -159,6 +177,10 @@ void FillSummary(const Result& r, v1::Summary* s) {
   s->mutable_loop_sizes()->Add(r.loop_sizes.begin(), r.loop_sizes.end());
   s->mutable_reversed_loops()->Add(r.reversed_loops.begin(),
                                    r.reversed_loops.end());
+  for (const auto& [a, b] : r.bridges) {
+    s->add_bridges(a);
+    s->add_bridges(b);
+  }
   for (const auto& [a, b] : r.non_delaunay_edges) {
     s->add_non_delaunay_edges(a);
     s->add_non_delaunay_edges(b);

@@ -465,12 +465,34 @@ def test_triangulate_loops_one_surface_bridges_two_rims():
     finally:
         bm.free()
 
-    # Three loops into one surface: refused by name, nothing changed.
+    # Three loops into one surface (bridges first): the top, +x and -x
+    # holes joined by one surface through the inside; the +y hole stays.
     sphere = sphere_with_four_holes()
+    bm = object_bmesh(sphere)
+    try:
+        open_y = sum(1 for e in bm.edges if e.is_boundary and
+                     (e.verts[0].co + e.verts[1].co).y / 2 > 0.8)
+    finally:
+        bm.free()
     bpy.ops.object.mode_set(mode='EDIT')
     select_boundary_edges(sphere, lambda c: c.z > 0.8 or abs(c.x) > 0.8)
+    assert bpy.ops.mesh.dot_triangulate_loops(one_surface=True) \
+        == {'FINISHED'}
+    bpy.ops.object.mode_set(mode='OBJECT')
+    check_mesh(sphere, boundary_edges=open_y)
+    bm = object_bmesh(sphere)
+    try:
+        # A sphere with four holes (-2) and a surface of three (-1), glued.
+        assert len(bm.verts) - len(bm.edges) + len(bm.faces) == -3
+    finally:
+        bm.free()
+
+    # One loop is not several: refused by name, nothing changed.
+    sphere = sphere_with_four_holes()
+    bpy.ops.object.mode_set(mode='EDIT')
+    select_boundary_edges(sphere, lambda c: c.z > 0.8)
     expect_report(lambda: bpy.ops.mesh.dot_triangulate_loops(one_surface=True),
-                  "One Surface joins two loops; 3 are selected")
+                  "One Surface joins two or more loops; 1 is selected")
     bpy.ops.object.mode_set(mode='OBJECT')
 
 

@@ -80,7 +80,20 @@ def test_malformed_loops_are_refused_before_the_call(client):
         client.triangulate(ring(6, 1, 0), loop_sizes=[3, 4])
 
 
-def test_three_loops_are_refused_by_the_server(client):
-    loops = [ring(5, 1, 0), ring(5, 0.5, 1), ring(5, 0.5, 2)]
-    with pytest.raises(dot_client.DotError, match="3 loops"):
-        client.triangulate_loops(loops)
+def test_three_loops_join_by_bridges_into_one_surface(client):
+    # A wide rim below two small ones side by side: a pants.
+    # The top rims run against the bottom one, as a tube's two rims do.
+    loops = [ring(8, 1, 0), ring(6, 0.3, 1, turn=-1.0) + [0.45, 0, 0],
+             ring(6, 0.3, 1, turn=-1.0) - [0.45, 0, 0]]
+    r = client.triangulate_loops(loops)
+    assert r.summary.loop_sizes == [8, 6, 6]
+    assert r.summary.bridges.shape == (2, 2)
+    # Genus 0 with 3 boundaries and no inner vertex: n + 2 (k - 2) faces.
+    assert len(r.triangles) == 20 + 2
+    edges = {}
+    for t in r.triangles:
+        for i in range(3):
+            e = frozenset((int(t[i]), int(t[(i + 1) % 3])))
+            edges[e] = edges.get(e, 0) + 1
+    assert sum(1 for k in edges.values() if k == 1) == 20  # the loop edges
+    assert all(k in (1, 2) for k in edges.values())

@@ -103,9 +103,9 @@ class TriangulateProps:
                                default='AUTO')
     one_surface: BoolProperty(
         name="One Surface", default=False,
-        description="Join the two selected loops or closed curves into one "
-        "surface (a tube between two rims, a ring around an island) instead "
-        "of one patch each")
+        description="Join the selected loops or closed curves into one "
+        "surface (a tube between two rims, a ring around islands, a branch "
+        "between three rims) instead of one patch each")
 
     def draw(self, context):
         layout = self.layout
@@ -115,12 +115,12 @@ class TriangulateProps:
         layout.prop(self, "search_space")
         layout.prop(self, "one_surface")
 
-    def check_two(self, loops, what):
-        """Reports and returns False unless One Surface has two loops."""
-        if self.one_surface and len(loops) != 2:
-            self.report({'ERROR'}, f"DOT: One Surface joins two {what}; "
-                        f"{len(loops)} are selected (more than two into one "
-                        "surface is not supported yet)")
+    def check_several(self, loops, what):
+        """Reports and returns False unless One Surface has two or more
+        loops."""
+        if self.one_surface and len(loops) < 2:
+            self.report({'ERROR'}, f"DOT: One Surface joins two or more "
+                        f"{what}; {len(loops)} is selected")
             return False
         return True
 
@@ -284,13 +284,37 @@ def _triangulate_work(loops, normals, options):
     return work
 
 
-def _surface_work(loops, normals, options):
+def _face_chords(bm, loops):
+    """Pairs of positions (in the loops joined) of loop vertices that share
+    a face but are not consecutive on a loop: the mesh's own chords and the
+    diagonals of its quads, which a surface over the rims must not use (an
+    edge of three faces, or a triangle touching a quad along its
+    diagonal)."""
+    position, consecutive = {}, set()
+    for loop in loops:
+        for k, v in enumerate(loop):
+            position[v] = len(position)
+            consecutive.add(frozenset((v, loop[(k + 1) % len(loop)])))
+    chords = set()
+    for face in bm.faces:
+        ids = [v.index for v in face.verts if v.index in position]
+        for i, a in enumerate(ids):
+            for b in ids[i + 1:]:
+                if frozenset((a, b)) not in consecutive:
+                    chords.add(tuple(sorted((position[a], position[b]))))
+    return sorted(chords)
+
+
+def _surface_work(loops, normals, options, forbidden=None):
     """One surface joining the loops ((n, 3) arrays): a Triangulate call
-    with several loops. Its answer, like a batch item, has .error (None or
-    the exception) and the result's fields."""
+    with several loops, none of whose triangles has an edge of
+    `forbidden` (pairs of positions in the loops joined). Its answer, like
+    a batch item, has .error (None or the exception) and the result's
+    fields."""
     def work(client, cancel, progress):
         progress(0.0, f"joining {len(loops)} loops")
         result = client.triangulate_loops(loops, normals, options=options,
+                                          forbidden_edges=forbidden,
                                           cancel=cancel,
                                           raise_no_triangulation=False)
         if result.summary.status != "ok":
@@ -496,7 +520,7 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
         if selected is None:
             return None
         obj, bm, loops = selected
-        if not self.check_two(loops, "loops"):
+        if not self.check_several(loops, "loops"):
             return None
         vertices = geometry.vertex_array(bm)
         weights = self.weights("triangulate")
@@ -517,8 +541,9 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
             keep_loop_directions=self.one_surface and rims)
         state = {"loops": loops, "counts": (len(bm.verts), len(bm.faces))}
         if self.one_surface:
+            forbidden = _face_chords(bm, loops) if rims else None
             return _surface_work([vertices[loop] for loop in loops], normals,
-                                 options), state
+                                 options, forbidden), state
         return _triangulate_work([vertices[loop] for loop in loops], normals,
                                  options), state
 
@@ -546,12 +571,17 @@ class MESH_OT_dot_triangulate_loops(LoopsOperator, TriangulateProps,
             return report_filled(self, 0, 1, [describe(result.error)], {})
         self.select_only_new(bm)
         stats = {}
-        geometry.add_patch(bm, loops[0] + loops[1], result.vertices,
-                           result.triangles, result.summary, stats)
+        geometry.add_patch(bm, [v for loop in loops for v in loop],
+                           result.vertices, result.triangles, result.summary,
+                           stats)
         self.update(obj, bm)
         if result.summary.reversed_loops:
             self.report({'INFO'}, "DOT: the second loop runs the other way "
                         "along the surface; recalculate normals if needed")
+        if len(result.summary.bridges):
+            self.report({'INFO'}, f"DOT: {len(loops)} loops joined by "
+                        f"{len(result.summary.bridges)} bridges first (the "
+                        "optimum for them: an approximation)")
         return report_filled(self, 1, 1, [], stats)
 
 
@@ -892,7 +922,7 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
             self.report({'ERROR'}, "DOT: curves have no normals: set the "
                         "normal deviation weight to 0")
             return None
-        if not self.check_two(loops, "closed curves"):
+        if not self.check_several(loops, "closed curves"):
             return None
         options = dot_client.TriangulateOptions(
             weights=weights, protect_edges=self.protect_edges,

@@ -239,6 +239,7 @@ class Client:
                     no_cache: Optional[bool] = None,
                     keep_loop_directions: Optional[bool] = None,
                     loop_sizes: Optional[Sequence[int]] = None,
+                    forbidden_edges: Optional[ArrayLike] = None,
                     progress: Optional[Callable[[Progress], None]] = None,
                     progress_interval_ms: int = 100,
                     raise_no_triangulation: bool = True,
@@ -276,7 +277,9 @@ class Client:
         :meth:`triangulate_loops`, which sets it): the row count of each
         loop in ``points``, in order. ``keep_loop_directions`` keeps each
         loop's direction (by default the solver may reverse loops after
-        the first).
+        the first). ``forbidden_edges``: (k, 2) vertex index pairs no
+        triangle may use as an edge (chords a surrounding mesh already
+        has, or the diagonals of its quads).
 
         ``progress`` is called with a :class:`Progress` at most every
         ``progress_interval_ms``; an exception it raises (also
@@ -311,6 +314,16 @@ class Client:
                     f"{len(p)} rows")
             if len(sizes) > 1:
                 request.polygon.loop_sizes.extend(sizes)
+        if forbidden_edges is not None:
+            pairs = np.asarray(forbidden_edges)
+            if pairs.size and (pairs.ndim != 2 or pairs.shape[1] != 2):
+                raise InvalidInput("forbidden_edges must be (k, 2) vertex "
+                                   "index pairs")
+            for i, (a, b) in enumerate(pairs.reshape(-1, 2).tolist()):
+                for v in (a, b):
+                    check.integer(f"forbidden_edges[{i}]", v, minimum=0,
+                                  maximum=len(p) - 1)
+                request.polygon.forbidden_edges.extend([int(a), int(b)])
         deadline = self._deadline(timeout)
         call = self._stub.Triangulate(request, timeout=deadline)
         result: Result = self._run(
@@ -326,7 +339,10 @@ class Client:
                           **kwargs: Any) -> Result:
         """One surface joining several closed loops: the minimal-cost
         surface of genus 0 whose boundary is exactly these loops (an
-        island inside a hole, a tube between two rims; today 2 loops).
+        island inside a hole, a tube between two rims, a branch between
+        three). Two loops are solved exactly; three or more are joined by
+        bridges first (``result.summary.bridges``) and the surface is the
+        optimum for them, an approximation.
 
         ``loops``: a sequence of (n_i, 3) arrays, each loop's vertices in
         order (n_i >= 3). ``normals``: optional, one (n_i, 3) array per

@@ -126,7 +126,9 @@ class Summary(_Plain):
     (only when ``inserted_count`` > 0, or for several loops: then
     ``loop_sizes`` cuts it into loops, each listed in the direction the
     surface runs along it, and ``reversed_loops`` names those that run
-    against their input). ``metric_costs`` maps each metric to its
+    against their input; three or more loops are joined by ``bridges``
+    first, (k - 1, 2) vertex index pairs, and the surface is the optimum
+    for them: an approximation). ``metric_costs`` maps each metric to its
     unweighted sum. ``intersecting_pairs`` is -1 when not checked.
     """
     status: str = "unspecified"
@@ -150,6 +152,8 @@ class Summary(_Plain):
     cache_hit: bool = False
     loop_sizes: List[int] = field(default_factory=list)
     reversed_loops: List[int] = field(default_factory=list)
+    bridges: np.ndarray = field(
+        default_factory=lambda: np.zeros((0, 2), np.int32))
 
     @classmethod
     def from_proto(cls, m: Any) -> "Summary":
@@ -159,6 +163,8 @@ class Summary(_Plain):
             loop=np.array(m.loop, dtype=np.int64).astype(np.int32),
             loop_sizes=[int(x) for x in m.loop_sizes],
             reversed_loops=[int(x) for x in m.reversed_loops],
+            bridges=np.array(m.bridges, dtype=np.int64).astype(np.int32)
+            .reshape(-1, 2),
             non_delaunay_edges=np.array(m.non_delaunay_edges, dtype=np.int64)
             .astype(np.int32).reshape(-1, 2),
             metric_costs=weights_dict(m.metric_costs),

@@ -28,6 +28,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dot/geometry.h"
@@ -285,12 +286,15 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
                        const Control& control, int32_t first_new_id,
                        HolePatch* patch, HoleReport* report);
 // The same over a hole with islands: one patch of genus 0 bounded by every
-// loop of `loops` (the rim first), each run in its direction.
-Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
-                       const std::vector<const HoleLoop*>& loops,
-                       const FillOptions& options, const Control& control,
-                       int32_t first_new_id, HolePatch* patch,
-                       HoleReport* report);
+// loop of `loops` (the rim first), each run in its direction; `avoid`
+// forbids more chords (mesh vertex id pairs; FillHoles passes those of
+// patch faces that met the mesh).
+Status TriangulateHole(
+    const MeshData& mesh, const MeshTopology& topology,
+    const std::vector<const HoleLoop*>& loops, const FillOptions& options,
+    const Control& control, int32_t first_new_id, HolePatch* patch,
+    HoleReport* report,
+    const std::vector<std::pair<int32_t, int32_t>>& avoid = {});
 
 // Liepa refinement and, for FillStage::kFair, fairing of the patch's new
 // interior vertices (CGAL PMP on the patch and three rings of faces around
@@ -303,10 +307,15 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
 
 // Intersecting pairs of patch faces with each other and with the mesh faces
 // near the patch (exact predicates), into `pairs`; stops when `control`
-// says so.
+// says so. IntersectingChords: the interior edges between mesh vertices of
+// the patch faces in such pairs, each once.
 Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs);
+Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control,
+                          std::vector<std::pair<int32_t, int32_t>>* chords);
 
 // INVALID_ARGUMENT naming the first field out of its range (weights not
 // finite or all zero, density outside [0.1, 100], fairing_continuity

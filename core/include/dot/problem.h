@@ -63,7 +63,8 @@ struct Problem {
   // result is a surface of genus 0 with exactly these boundaries; each loop
   // runs along it in its given direction (the surface on its left, seen
   // from the side its normal points to), unless Options::reorient_loops
-  // lets the solver reverse loops after the first. Today 1 or 2 loops.
+  // lets the solver reverse loops after the first. Two loops are solved
+  // exactly; three or more by bridges first (Result::bridges).
   // (A default initializer keeps {vertices, ...} initializations short.)
   std::vector<int32_t> loop_sizes = {};
 };
@@ -154,6 +155,11 @@ struct Result {
   // one loop.
   std::vector<int32_t> loop_sizes;
   std::vector<int32_t> reversed_loops;  // loops run against their input
+  // Three or more loops: the edges that joined the loops into one polygon
+  // first (vertex index pairs). The surface is the optimum for these
+  // bridges, an approximation of the optimum over every surface (see
+  // README "One surface through several loops"); empty otherwise.
+  std::vector<std::pair<int32_t, int32_t>> bridges;
   std::vector<int32_t> inserted;  // indices of vertices edge protection added
   std::vector<std::pair<int32_t, int32_t>> non_delaunay_edges;
   double total_cost = 0;

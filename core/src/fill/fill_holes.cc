@@ -169,11 +169,15 @@ std::string StopCause(const Status& s) {
   }
 }
 
-// One hole (a rim and its islands, or one loop): triangulate, refine and
-// fair, check.
-void FillOne(const MeshData& mesh, const MeshTopology& topo,
-             const std::vector<const HoleLoop*>& loops,
-             const FillOptions& options, const Control& control, HoleWork* w) {
+// One attempt at a hole (a rim and its islands, or one loop) with the
+// chords `avoid` forbidden: triangulate, refine and fair, check. When every
+// patch intersects the mesh, `met` is the DOT patch (else empty).
+void FillAttempt(const MeshData& mesh, const MeshTopology& topo,
+                 const std::vector<const HoleLoop*>& loops,
+                 const FillOptions& options, const Control& control,
+                 const std::vector<std::pair<int32_t, int32_t>>& avoid,
+                 HoleWork* w, HolePatch* met) {
+  *met = {};
   const auto first_new = static_cast<int32_t>(mesh.vertices.size());
   HoleReport& r = w->report;
   RunTicker ticker(control, Stage::kValidate);
@@ -184,7 +188,7 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
   w->started = true;
   auto t0 = Clock::now();
   Status s = TriangulateHole(mesh, topo, loops, options, control, first_new,
-                             &w->patch, &r);
+                             &w->patch, &r, avoid);
   r.triangulate_ms = MsSince(t0);
   if (s.code == StatusCode::kCancelled ||
       s.code == StatusCode::kDeadlineExceeded) {
@@ -256,9 +260,63 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     r.reason = "every patch found intersects the mesh (" +
                std::to_string(r.intersecting_pairs) +
                " pairs of faces): left open";
+    *met = dot_patch;
     return;
   }
   r.status = HoleStatus::kFilled;
+}
+
+// A hole: attempts, each forbidding the chords of the DOT patch faces that
+// met the mesh in the attempts before (the optimum then routes around
+// them), up to kAvoidRounds more.
+constexpr int kAvoidRounds = 3;
+
+void FillOne(const MeshData& mesh, const MeshTopology& topo,
+             const std::vector<const HoleLoop*>& loops,
+             const FillOptions& options, const Control& control, HoleWork* w) {
+  const auto first_new = static_cast<int32_t>(mesh.vertices.size());
+  const HoleReport initial = w->report;
+  std::vector<std::pair<int32_t, int32_t>> avoid;
+  HolePatch met;
+  FillAttempt(mesh, topo, loops, options, control, avoid, w, &met);
+  for (int round = 0;
+       round < kAvoidRounds && w->status.ok() &&
+       w->report.status == HoleStatus::kFailed && !met.faces.empty();
+       ++round) {
+    std::vector<std::pair<int32_t, int32_t>> chords;
+    Status s = IntersectingChords(mesh, topo, first_new, met, control, &chords);
+    if (!s.ok()) {
+      w->status = s;
+      return;
+    }
+    const size_t before = avoid.size();
+    for (const auto& c : chords) {
+      if (std::find(avoid.begin(), avoid.end(), c) == avoid.end()) {
+        avoid.push_back(c);
+      }
+    }
+    if (avoid.size() == before) return;
+    HoleWork retry;
+    retry.report = initial;
+    retry.started = true;
+    const double ms_before = w->report.triangulate_ms + w->report.check_ms;
+    FillAttempt(mesh, topo, loops, options, control, avoid, &retry, &met);
+    retry.report.triangulate_ms += ms_before;
+    if (!retry.status.ok()) {
+      w->status = retry.status;
+      return;
+    }
+    if (retry.report.status == HoleStatus::kFilled) {
+      const std::string own = retry.report.reason;
+      retry.report.reason = "the patch avoids " + std::to_string(avoid.size()) +
+                            " chords whose triangles met the mesh" +
+                            (own.empty() ? "" : "; ") + own;
+      *w = std::move(retry);
+      return;
+    }
+    if (retry.report.status != HoleStatus::kFailed) return;  // keep the first
+    *w = std::move(retry);
+  }
 }
 
 // A hole with islands is filled by one patch when one exists; when none

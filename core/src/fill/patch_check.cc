@@ -10,6 +10,7 @@
 
 #include "dot/fill_holes.h"
 #include "dot/validate.h"
+#include "mesh/edge_index.h"
 #include "mesh/topology.h"
 #include "util/run_control.h"
 
@@ -58,6 +59,62 @@ Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
   }
   return CountPairsAmong(point, std::move(faces), patch.faces.size(), control,
                          pairs);
+}
+
+Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control,
+                          std::vector<std::pair<int32_t, int32_t>>* chords) {
+  chords->clear();
+  if (!topology.face_tree) {
+    return MakeStatus(StatusCode::kInternal,
+                      "IntersectingChords needs BuildMeshTopology's face tree");
+  }
+  auto point = [&](int32_t id) -> const Vec3& {
+    return id < first_new_id ? mesh.vertices[id]
+                             : patch.new_vertices[id - first_new_id];
+  };
+  auto box_of = [&](const Triangle& t) {
+    Box3 b;
+    for (int32_t v : t) b.Add(point(v));
+    return b;
+  };
+  std::unordered_map<uint64_t, int> uses;
+  for (const Triangle& t : patch.faces) {
+    for (int k = 0; k < 3; ++k) ++uses[UndirectedEdgeKey(t[k], t[(k + 1) % 3])];
+  }
+  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
+                                          patch.split_faces.end());
+  std::unordered_set<uint64_t> seen;
+  std::vector<int32_t> near;
+  for (size_t f = 0; f < patch.faces.size(); ++f) {
+    const Triangle& t = patch.faces[f];
+    const Box3 box = box_of(t);
+    std::vector<Triangle> faces = {t};
+    for (size_t g = 0; g < patch.faces.size(); ++g) {
+      if (g != f && box_of(patch.faces[g]).Meets(box)) {
+        faces.push_back(patch.faces[g]);
+      }
+    }
+    near.clear();
+    topology.face_tree->FacesMeeting(box, &near);
+    for (int32_t m : near) {
+      if (!split.count(m)) faces.push_back(mesh.triangles[m]);
+    }
+    int64_t pairs = 0;
+    Status s = CountPairsAmong(point, std::move(faces), 1, control, &pairs);
+    if (!s.ok()) return s;
+    if (pairs == 0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int32_t a = t[k], b = t[(k + 1) % 3];
+      const uint64_t key = UndirectedEdgeKey(a, b);
+      if (a < first_new_id && b < first_new_id && uses[key] == 2 &&
+          seen.insert(key).second) {
+        chords->emplace_back(a, b);
+      }
+    }
+  }
+  return OkStatus();
 }
 
 }  // namespace dot

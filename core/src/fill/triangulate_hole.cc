@@ -44,6 +44,7 @@ HoleRing MakeRing(const std::vector<const HoleLoop*>& loops) {
 // 1e160 had zero normals, one at 1e-160 an infinite area weight).
 Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
                     const HoleRing& ring, const FillOptions& options,
+                    const std::vector<std::pair<int32_t, int32_t>>& avoid,
                     UnitScale* scale) {
   Problem p;
   const auto n = static_cast<int32_t>(ring.vertices.size());
@@ -83,6 +84,13 @@ Problem HoleProblem(const MeshData& mesh, const MeshTopology& topo,
     std::sort(later.begin(), later.end());
     later.erase(std::unique(later.begin(), later.end()), later.end());
     for (int32_t j : later) p.forbidden_edges.emplace_back(i, j);
+  }
+  for (const auto& [a, b] : avoid) {
+    auto i = position.find(a), j = position.find(b);
+    if (i == position.end() || j == position.end()) continue;
+    if (ring.next[i->second] == j->second || ring.next[j->second] == i->second)
+      continue;
+    p.forbidden_edges.emplace_back(i->second, j->second);
   }
   if (ring.sizes.size() > 1) p.loop_sizes = ring.sizes;
   p.weights = options.weights;
@@ -194,11 +202,13 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
                        const std::vector<const HoleLoop*>& loops,
                        const FillOptions& options, const Control& control,
                        int32_t first_new_id, HolePatch* patch,
-                       HoleReport* report) {
+                       HoleReport* report,
+                       const std::vector<std::pair<int32_t, int32_t>>& avoid) {
   *patch = {};
   UnitScale scale;
   const HoleRing hole = MakeRing(loops);
-  const Problem problem = HoleProblem(mesh, topology, hole, options, &scale);
+  const Problem problem =
+      HoleProblem(mesh, topology, hole, options, avoid, &scale);
   const auto n = static_cast<int32_t>(hole.vertices.size());
   std::vector<Attempt> attempts = {
       {Escalation::kDelaunay, SearchSpace::kDelaunay, false},

@@ -22,7 +22,8 @@ Status CheckProblem(const Problem& problem, const Options& options) {
   const int n = static_cast<int>(v.size());
   if (n < 3) {
     return InvalidArgument("polygon has " + std::to_string(n) +
-                           " vertices; at least 3 are needed");
+                           (n == 1 ? " vertex" : " vertices") +
+                           "; at least 3 are needed");
   }
   // The next vertex along each loop.
   std::vector<int> next(n);
@@ -31,9 +32,9 @@ Status CheckProblem(const Problem& problem, const Options& options) {
     for (size_t l = 0; l < problem.loop_sizes.size(); ++l) {
       const int32_t size = problem.loop_sizes[l];
       if (size < 3) {
-        return InvalidArgument("loop " + std::to_string(l) + " has " +
-                               std::to_string(size) +
-                               " vertices; at least 3 are needed");
+        return InvalidArgument(
+            "loop " + std::to_string(l) + " has " + std::to_string(size) +
+            (size == 1 ? " vertex" : " vertices") + "; at least 3 are needed");
       }
       sum += size;
     }

@@ -14,6 +14,7 @@
 #include "search_space/forbidden_edges.h"
 #include "search_space/planar_cdt.h"
 #include "solve/annulus.h"
+#include "solve/bridged.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -103,8 +104,28 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
   bool reversed = false, only_reversed = false;
   r->non_delaunay_edges.clear();
   r->reversed_loops.clear();
-  Status s = SolveTwo(*loop, tris, weights, options, control, &sol, &reversed,
-                      &only_reversed);
+  r->bridges.clear();
+  Status s;
+  if (loop->LoopCount() > 2) {
+    // Beyond two loops: bridges first, then the exact DP over the polygon
+    // they make (solve/bridged.h); the loops keep their directions.
+    std::vector<std::vector<int32_t>> members;
+    for (int32_t l = 0; l < loop->LoopCount(); ++l) {
+      members.push_back(LoopPositions(*loop, l));
+    }
+    BridgedSolution bridged;
+    s = SolveBridged(members, tris, CostsOf(*loop, weights),
+                     options.memory_budget_bytes, control, &bridged);
+    sol.states = bridged.states;
+    sol.table_bytes = bridged.table_bytes;
+    sol.triangles = std::move(bridged.triangles);
+    for (const auto& [p, q] : bridged.bridges) {
+      r->bridges.emplace_back(loop->ids[p], loop->ids[q]);
+    }
+  } else {
+    s = SolveTwo(*loop, tris, weights, options, control, &sol, &reversed,
+                 &only_reversed);
+  }
   r->stats.search_triangles = static_cast<int64_t>(tris.size());
   r->stats.dp_states = sol.states;
   r->stats.table_bytes = sol.table_bytes;
@@ -125,6 +146,9 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
       }
       if (r->non_delaunay_edges.size() > 10) m << " ...";
       m << (all ? "" : " (edge protection splits them)");
+    } else if (loop->LoopCount() > 2) {
+      m << s.message << " (approximate: bridges first, then the optimum "
+        << "for them; another tree of bridges may have a surface)";
     } else if (only_reversed) {
       m << "no surface joins the loops with loop 1 running its given way; "
            "one does with it reversed (let the solver reverse loops: drop "
@@ -190,12 +214,6 @@ Status SolveLoopsOnce(const PlaneFit& fit, bool planar,
                       const Options& options, const Control& control,
                       PolygonLoop* loop, Result* r) {
   const int32_t k = loop->LoopCount();
-  if (k > 2) {
-    return InvalidArgument(
-        std::to_string(k) +
-        " loops: one surface through more than 2 loops is not supported yet "
-        "(1 or 2 loops are)");
-  }
   {
     int32_t begin = 0;
     for (int32_t l = 0; l < k; ++l) {
