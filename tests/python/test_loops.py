@@ -97,3 +97,19 @@ def test_three_loops_join_by_bridges_into_one_surface(client):
             edges[e] = edges.get(e, 0) + 1
     assert sum(1 for k in edges.values() if k == 1) == 20  # the loop edges
     assert all(k in (1, 2) for k in edges.values())
+
+
+def test_forbidden_edges_steer_the_triangulation(client):
+    # A unit square: area ties its two diagonals; forbidding one leaves the
+    # other, through the server's own check of the chord.
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    for forbidden, kept in (([[0, 2]], {1, 3}), ([[1, 3]], {0, 2})):
+        r = client.triangulate(square, forbidden_edges=forbidden)
+        shared = set(map(int, r.triangles[0])) & set(map(int, r.triangles[1]))
+        assert shared == kept
+    with pytest.raises(dot_client.InvalidInput, match="forbidden_edges"):
+        client.triangulate(square, forbidden_edges=[[0, 9]])
+    with pytest.raises(dot_client.InvalidInput, match="pairs"):
+        client.triangulate(square, forbidden_edges=[0, 2, 1])
+    with pytest.raises(dot_client.DotError, match="polygon edge"):
+        client.triangulate(square, forbidden_edges=[[0, 1]])
