@@ -18,38 +18,6 @@
 namespace dot::bench {
 namespace {
 
-int64_t Pieces(const MeshData& m) {
-  UnionFind pieces(m.vertices.size());
-  std::vector<bool> used(m.vertices.size(), false);
-  for (const Triangle& t : m.triangles) {
-    pieces.Join(t[0], t[1]);
-    pieces.Join(t[1], t[2]);
-    for (int32_t v : t) used[v] = true;
-  }
-  int64_t count = 0;
-  for (size_t v = 0; v < used.size(); ++v) {
-    count += used[v] &&
-             pieces.Find(static_cast<int32_t>(v)) == static_cast<int32_t>(v);
-  }
-  return count;
-}
-
-int64_t Euler(const MeshData& m) {
-  std::vector<bool> used(m.vertices.size(), false);
-  std::vector<uint64_t> edges;
-  for (const Triangle& t : m.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      used[t[k]] = true;
-      edges.push_back(UndirectedEdgeKey(t[k], t[(k + 1) % 3]));
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return std::count(used.begin(), used.end(), true) -
-         static_cast<int64_t>(edges.size()) +
-         static_cast<int64_t>(m.triangles.size());
-}
-
 struct Cut {
   int count, triangles, island;
   uint64_t seed;
@@ -114,8 +82,9 @@ int RunIslands(const Config& config, std::ostream& report) {
       const auto judge = fill::MakeJudge(c);
       row.v = fill::Evaluate(*judge, r.mesh.vertices, r.mesh.triangles);
       row.closed = r.report.closed && row.v.closed;
-      row.one_piece = Pieces(r.mesh) == 1;
-      row.genus = Euler(r.mesh) == Euler(closed);
+      const MeshShape shape = ShapeOf(r.mesh);
+      row.one_piece = shape.pieces == 1;
+      row.genus = shape.euler == ShapeOf(closed).euler;
       if (row.v.pairs != 0 || row.v.non_manifold || row.v.misoriented ||
           r.report.closed != row.v.closed) {
         std::cerr << "islands: DEFECT " << c.name << "\n";
@@ -125,7 +94,7 @@ int RunIslands(const Config& config, std::ostream& report) {
       off.islands = IslandMode::kOff;
       const FillResult alone = FillHoles(c.mesh, off);
       row.filled_off = alone.report.filled;
-      row.pieces_off = Pieces(alone.mesh);
+      row.pieces_off = ShapeOf(alone.mesh).pieces;
       rows.push_back(std::move(row));
     }
   }

@@ -10,6 +10,7 @@
 
 #include "dot/control.h"
 #include "dot/geometry.h"
+#include "dot/mesh.h"
 #include "dot/status.h"
 
 namespace dot {
@@ -42,6 +43,15 @@ MeshReport ValidateSurface(const std::vector<Vec3>& vertices,
                            const std::vector<std::vector<int32_t>>& loops,
                            const std::vector<Triangle>& triangles,
                            bool check_intersections = true);
+
+// The topology of a triangle mesh over the vertices its faces use: its
+// pieces (faces joined by shared vertices) and its Euler characteristic
+// V - E + F (2 - 2 genus - borders per closed-up piece, summed).
+struct MeshShape {
+  int64_t pieces = 0;
+  int64_t euler = 0;
+};
+MeshShape ShapeOf(const MeshData& mesh);
 
 // Number of triangle pairs that intersect other than along a shared edge or
 // at a shared vertex (exact predicates, box-intersection candidate pairs).

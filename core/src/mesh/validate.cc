@@ -278,4 +278,31 @@ MeshReport ValidateSurface(const std::vector<Vec3>& vertices,
   return r;
 }
 
+MeshShape ShapeOf(const MeshData& mesh) {
+  UnionFind pieces(mesh.vertices.size());
+  std::vector<bool> used(mesh.vertices.size(), false);
+  std::vector<uint64_t> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      used[t[k]] = true;
+      pieces.Join(t[k], t[(k + 1) % 3]);
+      edges.push_back(UndirectedEdgeKey(t[k], t[(k + 1) % 3]));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  MeshShape shape;
+  int64_t vertices = 0;
+  for (size_t v = 0; v < used.size(); ++v) {
+    if (!used[v]) continue;
+    ++vertices;
+    shape.pieces +=
+        pieces.Find(static_cast<int32_t>(v)) == static_cast<int32_t>(v);
+  }
+  shape.euler = vertices - static_cast<int64_t>(edges.size()) +
+                static_cast<int64_t>(mesh.triangles.size());
+  return shape;
+}
+
 }  // namespace dot

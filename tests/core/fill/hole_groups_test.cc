@@ -11,7 +11,6 @@
 #include "dot/dot.h"
 #include "fixtures/filled_mesh.h"
 #include "fixtures/meshes.h"
-#include "util/union_find.h"
 
 namespace dot {
 namespace {
@@ -35,37 +34,6 @@ std::map<size_t, int32_t> IdsBySize(const std::vector<HoleLoop>& loops) {
   for (const HoleLoop& l : loops) ids[l.vertices.size()] = l.id;
   EXPECT_EQ(ids.size(), loops.size());
   return ids;
-}
-
-int64_t Components(const MeshData& m) {
-  UnionFind pieces(m.vertices.size());
-  std::vector<bool> used(m.vertices.size(), false);
-  for (const Triangle& t : m.triangles) {
-    pieces.Join(t[0], t[1]);
-    pieces.Join(t[1], t[2]);
-    for (int32_t v : t) used[v] = true;
-  }
-  int64_t count = 0;
-  for (size_t v = 0; v < used.size(); ++v) {
-    count += used[v] &&
-             pieces.Find(static_cast<int32_t>(v)) == static_cast<int32_t>(v);
-  }
-  return count;
-}
-
-// V - E + F of a mesh (its used vertices).
-int64_t Euler(const MeshData& m) {
-  std::vector<bool> used(m.vertices.size(), false);
-  for (const Triangle& t : m.triangles) {
-    for (int32_t v : t) used[v] = true;
-  }
-  int64_t edges = 0;
-  ForEachEdge(BuildEdgeIndex(m.triangles), [&](const EdgeUses&) {
-    ++edges;
-    return true;
-  });
-  return std::count(used.begin(), used.end(), true) - edges +
-         static_cast<int64_t>(m.triangles.size());
 }
 
 TEST(GroupHoleLoopsTest, AnIslandJoinsTheNearestRimOfALargerPiece) {
@@ -143,7 +111,7 @@ TEST(FillHolesIslandsTest, AFlatRingIsFilledByOnePatchJoiningBothLoops) {
             std::string::npos);
   // One piece; a planar ring of 48 boundary vertices and no interior
   // vertex has exactly 48 triangles.
-  EXPECT_EQ(Components(r.mesh), 1);
+  EXPECT_EQ(ShapeOf(r.mesh).pieces, 1);
   EXPECT_EQ(hr.patch_triangles, 48);
   EXPECT_EQ(r.patches.size(), 1u);
 
@@ -178,7 +146,7 @@ TEST(FillHolesIslandsTest, RingHolesInClosedMeshesComeOutClosedInOnePiece) {
     }
     MeshData holey, removed;
     ASSERT_TRUE(CutIslandHoles(closed, 3, 150, 30, 11, &holey, &removed).ok());
-    ASSERT_EQ(Components(holey), 4) << name;  // the body and 3 islands
+    ASSERT_EQ(ShapeOf(holey).pieces, 4) << name;  // the body and 3 islands
     const FillResult r = FillHoles(holey);
     testing::ExpectFilledMesh(holey, r, /*closed=*/true, name);
     EXPECT_EQ(r.report.loops, 6) << name;
@@ -191,8 +159,8 @@ TEST(FillHolesIslandsTest, RingHolesInClosedMeshesComeOutClosedInOnePiece) {
     EXPECT_EQ(rims, 3) << name;
     EXPECT_EQ(r.patches.size(), 3u) << name;
     // The ground truth's topology: one piece, the closed mesh's genus.
-    EXPECT_EQ(Components(r.mesh), 1) << name;
-    EXPECT_EQ(Euler(r.mesh), Euler(closed)) << name;
+    EXPECT_EQ(ShapeOf(r.mesh).pieces, 1) << name;
+    EXPECT_EQ(ShapeOf(r.mesh).euler, ShapeOf(closed).euler) << name;
     std::printf(
         "%s: 3 ring holes of 120 triangles around islands of 30, "
         "each filled by one patch in %.1f ms\n",
