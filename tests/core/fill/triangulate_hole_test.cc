@@ -128,3 +128,64 @@ TEST(TriangulateHoleTest, TheSurroundingFacesArePriced) {
 
 }  // namespace
 }  // namespace dot
+
+namespace dot {
+namespace {
+
+// The chords FillHoles re-solves without: of a patch whose two faces lie on
+// the grid over faces it keeps (an L-shaped hole's notch), the one edge the
+// two share; their border edges are not chords.
+TEST(TriangulateHoleTest,
+     IntersectingChordsAreTheInnerEdgesOfFacesThatMeetTheMesh) {
+  const int n = 6;
+  const MeshData m =
+      testing::WithoutFaces(testing::FlatGrid(n), [&](int32_t f) {
+        const int quad = f / 2, i = quad / n, j = quad % n;
+        return (i == 2 || i == 3) && (j == 2 || j == 3) && !(i == 3 && j == 3);
+      });
+  auto id = [&](int i, int j) { return i * (n + 1) + j; };
+  const auto topology = BuildMeshTopology(m);
+  HolePatch patch;
+  patch.faces = {{id(2, 2), id(4, 3), id(3, 4)},
+                 {id(4, 3), id(4, 4), id(3, 4)}};
+  const auto first_new = static_cast<int32_t>(m.vertices.size());
+  int64_t pairs = 0;
+  ASSERT_TRUE(
+      PatchIntersections(m, *topology, first_new, patch, {}, &pairs).ok());
+  EXPECT_GT(pairs, 0);
+  std::vector<std::pair<int32_t, int32_t>> chords;
+  ASSERT_TRUE(
+      IntersectingChords(m, *topology, first_new, patch, {}, &chords).ok());
+  ASSERT_EQ(chords.size(), 1u);
+  EXPECT_EQ(std::minmax(chords[0].first, chords[0].second),
+            std::minmax(id(4, 3), id(3, 4)));
+  // A patch inside the hole meets nothing: no chord.
+  patch.faces = {{id(2, 2), id(3, 2), id(3, 3)},
+                 {id(2, 2), id(3, 3), id(2, 3)}};
+  ASSERT_TRUE(
+      IntersectingChords(m, *topology, first_new, patch, {}, &chords).ok());
+  EXPECT_TRUE(chords.empty());
+}
+
+// `avoid` forbids chords as the mesh's own edges are: the saddle whose only
+// manifold patch uses b-d has none once b-d is avoided.
+TEST(TriangulateHoleTest, AvoidedChordsAreNeverUsed) {
+  const MeshData m{{{0, 0, 0}, {1, 0, 0.5}, {1, 1, 0}, {0, 1, 0.5}},
+                   {{0, 2, 1}, {0, 3, 2}}};
+  std::vector<HoleLoop> loops;
+  ASSERT_TRUE(FindHoleLoops(m, &loops).ok());
+  ASSERT_EQ(loops.size(), 1u);
+  const auto topology = BuildMeshTopology(m);
+  FillOptions o;
+  HolePatch patch;
+  HoleReport report;
+  ASSERT_TRUE(
+      TriangulateHole(m, *topology, {&loops[0]}, o, {}, 4, &patch, &report)
+          .ok());
+  const Status s = TriangulateHole(m, *topology, {&loops[0]}, o, {}, 4, &patch,
+                                   &report, {{1, 3}});
+  EXPECT_EQ(s.code, StatusCode::kNoTriangulation) << s.message;
+}
+
+}  // namespace
+}  // namespace dot
