@@ -90,23 +90,40 @@ std::vector<int32_t> Tree(const std::vector<Bridge>& bridges,
   return tree;
 }
 
-// Appends loop l's walk from `entry`: each position, and at a position that
-// ends a bridge to a loop not yet walked, that loop's walk and the position
-// again; a loop entered by a bridge ends back at its entry.
-void Walk(const Loops& loops, const std::vector<int32_t>& bridge_at, int32_t l,
-          int32_t entry, int32_t from, std::vector<int32_t>* out) {
-  const std::vector<int32_t>& members = (*loops.members)[l];
-  const auto size = static_cast<int32_t>(members.size());
-  const int32_t start = loops.index_in_loop[entry];
-  for (int32_t i = 0; i < size; ++i) {
-    const int32_t p = members[(start + i) % size];
-    out->push_back(p);
+// The walk of the loops from loop 0's first position: each position, and
+// at a position that ends a bridge to a loop not yet walked, that loop's
+// walk (from the bridge's end round to it again) and the position again.
+// Iterative: a chain of thousands of loops must not deepen the stack.
+std::vector<int32_t> Walk(const Loops& loops,
+                          const std::vector<int32_t>& bridge_at) {
+  struct Frame {
+    int32_t loop, entry, from, i;
+  };
+  const std::vector<std::vector<int32_t>>& members = *loops.members;
+  std::vector<int32_t> out;
+  std::vector<Frame> stack = {{0, members[0][0], -1, 0}};
+  while (!stack.empty()) {
+    Frame& f = stack.back();
+    const std::vector<int32_t>& m = members[f.loop];
+    const auto size = static_cast<int32_t>(m.size());
+    if (f.i == size) {
+      const Frame done = f;
+      stack.pop_back();
+      if (done.from >= 0) {
+        out.push_back(done.entry);
+        out.push_back(done.from);
+      }
+      continue;
+    }
+    const int32_t p = m[(loops.index_in_loop[f.entry] + f.i) % size];
+    ++f.i;
+    out.push_back(p);
     const int32_t q = bridge_at[p];
-    if (q < 0 || q == from) continue;
-    Walk(loops, bridge_at, loops.loop_of[q], q, p, out);
-    out->push_back(p);
+    if (q >= 0 && q != f.from) {
+      stack.push_back({loops.loop_of[q], q, p, 0});  // `f` is stale now
+    }
   }
-  if (from >= 0) out->push_back(entry);
+  return out;
 }
 
 struct Cut {
@@ -205,7 +222,7 @@ Status SolveBridged(const std::vector<std::vector<int32_t>>& members,
       bridge_at[bridges[b].q] = bridges[b].p;
     }
     Cut cut;
-    Walk(loops, bridge_at, 0, members[0][0], -1, &cut.polygon);
+    cut.polygon = Walk(loops, bridge_at);
     const auto m = static_cast<int32_t>(cut.polygon.size());
     cut.copies.assign(n, {});
     for (int32_t i = 0; i < m; ++i) cut.copies[cut.polygon[i]].push_back(i);

@@ -135,6 +135,29 @@ TEST(FillHolesIslandsTest, AFlatRingIsFilledByOnePatchJoiningBothLoops) {
   EXPECT_EQ(joined.mesh.triangles, r.mesh.triangles);
 }
 
+TEST(FillHolesIslandsTest, TwoIslandsInOneFlatHoleAreJoinedByOnePatch) {
+  const MeshData m = GridWithout(16, [](int i, int j) {
+    return In(i, j, 3, 13) && !In(i, j, 5, 7) && !In(i, j, 9, 11);
+  });
+  FillOptions o;
+  o.selection.skip_longest = true;
+  o.stage = FillStage::kTriangulate;
+  const FillResult r = FillHoles(m, o);
+  testing::ExpectFilledMesh(m, r, /*closed=*/false, "two islands");
+  ASSERT_EQ(r.report.loops, 4);
+  EXPECT_EQ(r.report.filled, 3);
+  int32_t rim = -1;
+  for (const HoleReport& h : r.report.holes) {
+    if (h.boundary_vertices == 40) rim = h.id;
+  }
+  ASSERT_GE(rim, 0);
+  EXPECT_EQ(r.report.holes[rim].joined.size(), 2u);
+  // Three loops of 40 + 8 + 8 vertices, no inner vertex: n + 2 (k - 2)
+  // triangles, joined into the grid as one piece.
+  EXPECT_EQ(r.report.holes[rim].patch_triangles, 58);
+  EXPECT_EQ(ShapeOf(r.mesh).pieces, 1);
+}
+
 TEST(FillHolesIslandsTest, RingHolesInClosedMeshesComeOutClosedInOnePiece) {
   for (const char* name : {"elephant.off", "armadillo.off"}) {
     PolygonSoup soup;
