@@ -4,11 +4,13 @@
 
 Starts build/server/dot-server on a loopback port with 1 KiB mesh chunks
 (--chunk-kb 1, so small meshes still come back in several messages) and
-records, byte for byte, the response streams of three calls:
+records, byte for byte, the response streams of four calls:
 
 - triangulate.stream: one Triangulate call (a noisy 80-vertex saddle rim
   with edge protection, so the server inserts vertices, and with
   omit_input_vertices, so the client must put the input back);
+- triangulate_loops.stream: one Triangulate call with three loops (a
+  pants: Summary.loop_sizes, loop and bridges);
 - fill_holes.stream: one FillHoles call answering the whole mesh (a small
   sphere with a hole, filled to the fair stage);
 - fill_holes_patches.stream: one FillHoles call answering patches
@@ -68,7 +70,8 @@ from dot_client import wire  # noqa: E402
 from dot_client._proto.dot.v1 import triangulation_pb2 as pb  # noqa: E402
 from shapes import bumpy_grid_with_hole  # noqa: E402
 
-GOLDEN = ["triangulate", "fill_holes", "fill_holes_patches"]
+GOLDEN = ["triangulate", "triangulate_loops", "fill_holes",
+          "fill_holes_patches"]
 
 #: FillHoles uploads are recorded in messages of this size, so even the
 #: small golden meshes take several slices of each kind.
@@ -90,6 +93,19 @@ def polygon():
     r = 1 + rng.uniform(-0.3, 0.3, n)
     return np.round(np.c_[r * np.cos(t), r * np.sin(t),
                           np.cos(3 * t) + rng.uniform(-0.3, 0.3, n)], 3)
+
+
+def pants():
+    """Three rims (3 decimals): a wide one below two small ones side by
+    side, the top ones running against it as a tube's rims do; joined by
+    bridges first."""
+    rng = np.random.default_rng(7)
+    def ring(n, radius, z, x, turn):
+        t = turn * 2 * np.pi * np.arange(n) / n
+        return np.round(np.c_[x + radius * np.cos(t), radius * np.sin(t),
+                              z + rng.uniform(-0.05, 0.05, n)], 3)
+    return [ring(16, 1.0, 0.0, 0.0, 1), ring(10, 0.3, 1.0, -0.45, -1),
+            ring(10, 0.3, 1.0, 0.45, -1)]
 
 
 def sphere_with_hole():
@@ -302,6 +318,53 @@ def main():
                 "inserted_count": summary.inserted_count,
                 "loop": list(summary.loop)}}
 
+        # Triangulate with three loops: loop_sizes, loop and bridges.
+        rims = pants()
+        loop_points = np.concatenate(rims)
+        request = pb.TriangulateRequest(id="golden-loops")
+        request.polygon.coordinates.extend(loop_points.reshape(-1).tolist())
+        request.polygon.loop_sizes.extend([len(r) for r in rims])
+        request.weights.squared_dihedral = 1
+        request.options.search_space = pb.SEARCH_SPACE_DELAUNAY
+        request.options.omit_input_vertices = True
+        request.options.progress_interval_ms = 1
+        request.options.no_cache = True
+        loops_tri = record(channel.unary_stream(
+            "/dot.v1.Triangulator/Triangulate",
+            request_serializer=pb.TriangulateRequest.SerializeToString,
+            response_deserializer=raw), request)
+        xyz = os.path.join(tmp, "pants.xyz")
+        with open(xyz, "w") as f:
+            f.write("\n\n".join("\n".join(" ".join(repr(float(x)) for x in p)
+                                          for p in r) for r in rims) + "\n")
+        obj = os.path.join(tmp, "pants.obj")
+        subprocess.run([args.dotctl, "triangulate", "--local", xyz, "-o", obj,
+                        "--space", "delaunay", "--squared-dihedral", "1"],
+                       check=True)
+        lv, lt = read_obj(obj)
+        loops_summary = pb.TriangulateResponse.FromString(
+            loops_tri[-1]).summary
+        loops_json = {
+            "about": "tests/golden/triangulate_loops.stream: the Triangulate "
+                     "response stream of this request with three loops "
+                     "(scripts/record_golden.py); expected: dotctl "
+                     "triangulate --local on the same loops",
+            "rpc": "dot.v1.Triangulator/Triangulate",
+            "request": {
+                "id": "golden-loops", "points": loop_points.tolist(),
+                "loop_sizes": [len(r) for r in rims],
+                "weights": {"squared_dihedral": 1.0},
+                "options": {"search_space": "delaunay",
+                            "omit_input_vertices": True,
+                            "progress_interval_ms": 1, "no_cache": True}},
+            "stream": kinds(loops_tri, pb.TriangulateResponse),
+            "expected": {
+                "status": "ok", "vertices": lv, "triangles": lt,
+                "loop_sizes": list(loops_summary.loop_sizes),
+                "loop": list(loops_summary.loop),
+                "bridges": list(loops_summary.bridges)}}
+        assert len(loops_summary.bridges) == 4, "two bridges"
+
         # FillHoles, the whole mesh back.
         vertices, faces = sphere_with_hole()
         options = pb.FillOptions(stage=pb.FILL_STAGE_FAIR)
@@ -393,7 +456,15 @@ def main():
         assert sum(1 for k in kinds(patched, pb.FillHolesResponse)
                    if k == "patch") >= 2, "the patch fits one message"
 
+        got = wire.assemble_triangulate(
+            [pb.TriangulateResponse.FromString(b) for b in loops_tri],
+            loop_points)
+        assert np.array_equal(got.vertices, np.array(lv)), "loops vertices"
+        assert np.array_equal(got.triangles, np.array(lt)), "loops triangles"
+
         for name, payloads, doc in (("triangulate", tri, tri_json),
+                                    ("triangulate_loops", loops_tri,
+                                     loops_json),
                                     ("fill_holes", fill, fill_json),
                                     ("fill_holes_patches", patched,
                                      patches_json)):

@@ -156,6 +156,45 @@ TEST(GoldenStreamTest, TriangulateStreamReassemblesToTheLocalResult) {
                  Triangles(Field(expected, "triangles")));
 }
 
+TEST(GoldenStreamTest, TriangulateLoopsStreamCarriesLoopsAndBridges) {
+  const auto messages =
+      ReadStream<v1::TriangulateResponse>("triangulate_loops.stream");
+  const Struct doc = ReadJson("triangulate_loops.json");
+  const Struct& request = Field(doc, "request").struct_value();
+  const Struct& expected = Field(doc, "expected").struct_value();
+  const std::vector<Vec3> input = Points(Field(request, "points"));
+  wire::MeshAssembler assembler;
+  v1::Summary summary;
+  for (const auto& m : messages) {
+    if (m.has_mesh()) {
+      ASSERT_TRUE(assembler.Add(m.mesh()).ok());
+    }
+    if (m.has_summary()) summary = m.summary();
+  }
+  ASSERT_EQ(summary.status(), v1::RESULT_STATUS_OK);
+  auto numbers = [](const Value& v) {
+    std::vector<uint32_t> out;
+    for (const Value& x : v.list_value().values()) {
+      out.push_back(static_cast<uint32_t>(x.number_value()));
+    }
+    return out;
+  };
+  EXPECT_EQ(std::vector<uint32_t>(summary.loop_sizes().begin(),
+                                  summary.loop_sizes().end()),
+            numbers(Field(expected, "loop_sizes")));
+  EXPECT_EQ(std::vector<uint32_t>(summary.loop().begin(), summary.loop().end()),
+            numbers(Field(expected, "loop")));
+  EXPECT_EQ(
+      std::vector<uint32_t>(summary.bridges().begin(), summary.bridges().end()),
+      numbers(Field(expected, "bridges")));
+  EXPECT_EQ(summary.bridges_size(), 4);  // two bridges join three loops
+  MeshData mesh;
+  const Status s = assembler.Finish(summary, input, &mesh);
+  ASSERT_TRUE(s.ok()) << s.message;
+  ExpectSameMesh(mesh, Points(Field(expected, "vertices")),
+                 Triangles(Field(expected, "triangles")));
+}
+
 TEST(GoldenStreamTest, FillHolesStreamReassemblesToTheLocalResult) {
   const auto messages = ReadStream<v1::FillHolesResponse>("fill_holes.stream");
   const Struct doc = ReadJson("fill_holes.json");

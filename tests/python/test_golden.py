@@ -44,6 +44,21 @@ def test_triangulate_stream():
     assert len(progress) == doc["stream"].count("progress")
 
 
+def test_triangulate_loops_stream():
+    messages, doc = load("triangulate_loops", pb.TriangulateResponse)
+    assert [m.WhichOneof("payload") for m in messages] == doc["stream"]
+    points = np.array(doc["request"]["points"])
+    r = wire.assemble_triangulate(messages, points)
+    expected = doc["expected"]
+    assert np.array_equal(r.vertices, np.array(expected["vertices"]))
+    assert np.array_equal(r.triangles, np.array(expected["triangles"]))
+    assert r.summary.loop_sizes == expected["loop_sizes"] \
+        == doc["request"]["loop_sizes"]
+    assert r.summary.loop.tolist() == expected["loop"]
+    assert r.summary.bridges.reshape(-1).tolist() == expected["bridges"]
+    assert r.summary.bridges.shape == (2, 2)
+
+
 def test_fill_holes_stream():
     messages, doc = load("fill_holes", pb.FillHolesResponse)
     assert [m.WhichOneof("payload") for m in messages] == doc["stream"]
