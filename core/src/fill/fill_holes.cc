@@ -588,7 +588,9 @@ FillResult Fill(const MeshData& mesh, MeshData* owned,
   for (size_t i = 0; i < loops.size(); ++i) {
     for (size_t k = 1; k < groups[i].size(); ++k) {
       work[i].report.joined.push_back(groups[i][k]);
-      work[groups[i][k]].report.joined_to = static_cast<int32_t>(i);
+      HoleReport& island = work[groups[i][k]].report;
+      island.joined_to = static_cast<int32_t>(i);
+      island.reason = "island of hole " + std::to_string(i);
     }
   }
   if (options.dry_run) {
