@@ -89,9 +89,10 @@ struct HoleSelection {
 //  kAuto  loop I is an island of loop R when I is the outer border (the
 //         widest loop, by bounding-box diagonal) of a piece of the mesh
 //         (faces joined by shared vertices) with fewer faces than R's
-//         piece, R is wider than I, R's bounding box holds the centre of
-//         I's vertices, and among such loops R is the nearest to I (mean
-//         distance from I's vertices to R's, at most R's diameter). A
+//         piece, R is wider than I, R's bounding box grown by a quarter of
+//         R's diameter each way holds the centre of I's vertices, and among
+//         the 16 narrowest such loops R is the nearest to I (mean distance
+//         from I's vertices to R's, sampled, at most R's diameter). A
 //         piece's other loops are its
 //         own holes (the inner rim of a ring-shaped island), and a loop
 //         that is an island is never a rim. Topology and distance rather

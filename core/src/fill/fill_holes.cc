@@ -208,8 +208,15 @@ void FillAttempt(const MeshData& mesh, const MeshTopology& topo,
     return;
   }
   const HolePatch dot_patch = w->patch;
+  // Refinement's vertex cap follows the hole's size: every loop's vertices
+  // (the report counts the rim's alone).
+  const int32_t rim_vertices = r.boundary_vertices;
+  for (size_t k = 1; k < loops.size(); ++k) {
+    r.boundary_vertices += static_cast<int32_t>(loops[k]->vertices.size());
+  }
   s = RefineAndFairPatch(mesh, topo, options, control, first_new, &w->patch,
                          &r);
+  r.boundary_vertices = rim_vertices;
   if (!s.ok()) {
     w->status = s;
     return;
@@ -336,21 +343,29 @@ void FillGroup(const MeshData& mesh, const MeshTopology& topo,
   const HoleReport before = lead.report;
   FillOne(mesh, topo, hole, options, control, &lead);
   if (!lead.status.ok() || lead.report.status == HoleStatus::kFilled) return;
-  const std::string why = "its islands could not be joined to it (" +
-                          lead.report.reason + "): filled alone";
+  const std::string why =
+      "its islands could not be joined to it (" + lead.report.reason + ")";
   lead.report = before;
   lead.patch = {};
+  // No loop of the group is joined any more, also those a stop leaves
+  // unfilled (they must not take the rim's status).
+  for (int32_t i : group) {
+    HoleReport& r = (*work)[i].report;
+    r.joined.clear();
+    r.joined_to = -1;
+    r.reason.clear();
+  }
   for (int32_t i : group) {
     HoleWork& w = (*work)[i];
-    w.report.joined.clear();
-    w.report.joined_to = -1;
     FillOne(mesh, topo, {&loops[i]}, options, control, &w);
     if (!w.status.ok()) return;
+    const bool filled = w.report.status == HoleStatus::kFilled;
     const std::string own = w.report.reason;
     w.report.reason =
-        i == group[0] ? why
-                      : "the hole of rim " + std::to_string(group[0]) +
-                            " could not be joined to this island: filled alone";
+        (i == group[0] ? why
+                       : "the hole of rim " + std::to_string(group[0]) +
+                             " could not be joined to this island") +
+        (filled ? ": filled alone" : ": tried alone");
     if (!own.empty()) w.report.reason += "; " + own;
   }
 }

@@ -40,10 +40,21 @@ Outline MakeOutline(const MeshData& mesh, const HoleLoop& loop) {
   return o;
 }
 
-bool Holds(const Box3& box, const Vec3& p) {
-  return p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y &&
-         p.y <= box.hi.y && p.z >= box.lo.z && p.z <= box.hi.z;
+// A loop's box grown by a quarter of its diameter each way: a flat rim's
+// box is a thin slab, and an island may bulge out of the rim's plane (a
+// hole in a sphere).
+Box3 Reach(const Outline& o) {
+  const double pad = 0.25 * o.diameter;
+  Box3 b = o.box;
+  b.lo = b.lo - Vec3{pad, pad, pad};
+  b.hi = b.hi + Vec3{pad, pad, pad};
+  return b;
 }
+
+// At most this many rims are weighed per island (the narrowest whose
+// reach holds it): a mesh of thousands of overlapping copies must not
+// make the pairs quadratic.
+constexpr size_t kRimsPerIsland = 16;
 
 // Mean distance from a vertex of `inner` to the nearest vertex of `outer`,
 // over at most kGapSamples of each, evenly spaced along the loops: a
@@ -161,17 +172,39 @@ Status GroupHoleLoops(const MeshData& mesh, const std::vector<HoleLoop>& loops,
       const Vec3& c = o.centre;
       centres.emplace_back(CGAL::Bbox_3(c.x, c.y, c.z, c.x, c.y, c.z), id);
     }
-    boxes.emplace_back(CGAL::Bbox_3(o.box.lo.x, o.box.lo.y, o.box.lo.z,
-                                    o.box.hi.x, o.box.hi.y, o.box.hi.z),
-                       id);
+    const Box3 r = Reach(o);
+    boxes.emplace_back(
+        CGAL::Bbox_3(r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y, r.hi.z), id);
   }
+  // The cheap conditions are tested as pairs come, and each island keeps
+  // its kRimsPerIsland narrowest rims, so memory stays linear.
   std::vector<std::vector<int32_t>> around(loops.size());
   struct Stop {};
   try {
     CGAL::box_intersection_d(centres.begin(), centres.end(), boxes.begin(),
                              boxes.end(), [&](const Box& c, const Box& b) {
                                if (!ticker.Tick()) throw Stop{};
-                               around[c.info()].push_back(b.info());
+                               const int32_t i = c.info(), r = b.info();
+                               if (piece[r] == piece[i] || named[r] ||
+                                   faces[piece[r]] <= faces[piece[i]] ||
+                                   !(loops[r].diameter > loops[i].diameter)) {
+                                 return;
+                               }
+                               std::vector<int32_t>& a = around[i];
+                               auto narrower = [&](int32_t x, int32_t y) {
+                                 return loops[x].diameter != loops[y].diameter
+                                            ? loops[x].diameter <
+                                                  loops[y].diameter
+                                            : x < y;
+                               };
+                               if (a.size() < kRimsPerIsland) {
+                                 a.push_back(r);
+                                 std::push_heap(a.begin(), a.end(), narrower);
+                               } else if (narrower(r, a.front())) {
+                                 std::pop_heap(a.begin(), a.end(), narrower);
+                                 a.back() = r;
+                                 std::push_heap(a.begin(), a.end(), narrower);
+                               }
                              });
   } catch (const Stop&) {
     return ticker.status();
@@ -183,13 +216,7 @@ Status GroupHoleLoops(const MeshData& mesh, const std::vector<HoleLoop>& loops,
     double best = std::numeric_limits<double>::infinity();
     for (int32_t r : around[i]) {
       if (!ticker.Tick()) return ticker.status();
-      if (piece[r] == piece[i] || named[r] ||
-          faces[piece[r]] <= faces[piece[i]] ||
-          !(loops[r].diameter > loops[i].diameter) ||
-          !Holds(outlines[r].box, outlines[i].centre) ||
-          (islands != nullptr && (*islands)[r])) {
-        continue;
-      }
+      if (islands != nullptr && (*islands)[r]) continue;
       // Near: within the rim's diameter, on average.
       const double gap = MeanGap(outlines[i], outlines[r]);
       if (gap <= loops[r].diameter && gap < best) {

@@ -3,6 +3,8 @@
 // boxes meet the patch's), with the exact predicates of the validator.
 #include "fill/patch_check.h"
 
+#include <CGAL/box_intersection_d.h>
+
 #include <algorithm>
 #include <limits>
 #include <unordered_map>
@@ -70,41 +72,68 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
     return MakeStatus(StatusCode::kInternal,
                       "IntersectingChords needs BuildMeshTopology's face tree");
   }
+  RunTicker ticker(control, "the intersection check");
   auto point = [&](int32_t id) -> const Vec3& {
     return id < first_new_id ? mesh.vertices[id]
                              : patch.new_vertices[id - first_new_id];
   };
-  auto box_of = [&](const Triangle& t) {
+  // The patch faces first, then the split faces' pieces and the mesh
+  // faces near the patch (as PatchIntersections sees them).
+  std::vector<Triangle> faces = patch.faces;
+  for (const auto& pieces : patch.pieces) {
+    faces.insert(faces.end(), pieces.begin(), pieces.end());
+  }
+  Box3 all;
+  for (const Triangle& t : patch.faces) {
+    for (int32_t v : t) all.Add(point(v));
+  }
+  std::vector<int32_t> near;
+  topology.face_tree->FacesMeeting(all, &near);
+  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
+                                          patch.split_faces.end());
+  for (int32_t f : near) {
+    if (!split.count(f)) faces.push_back(mesh.triangles[f]);
+  }
+  // Each patch face with the faces whose boxes meet its own (one box
+  // intersection pass), then the exact test on that small set.
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;
+  std::vector<Box> boxes;
+  for (size_t f = 0; f < faces.size(); ++f) {
     Box3 b;
-    for (int32_t v : t) b.Add(point(v));
-    return b;
-  };
+    for (int32_t v : faces[f]) b.Add(point(v));
+    boxes.emplace_back(
+        CGAL::Bbox_3(b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z),
+        static_cast<int32_t>(f));
+  }
+  const size_t checked = patch.faces.size();
+  std::vector<std::vector<int32_t>> meets(checked);
+  struct Stop {};
+  try {
+    CGAL::box_self_intersection_d(
+        boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+          if (!ticker.Tick()) throw Stop{};
+          const auto a = static_cast<size_t>(x.info()),
+                     b = static_cast<size_t>(y.info());
+          if (a < checked) meets[a].push_back(y.info());
+          if (b < checked) meets[b].push_back(x.info());
+        });
+  } catch (const Stop&) {
+    return ticker.status();
+  }
   std::unordered_map<uint64_t, int> uses;
   for (const Triangle& t : patch.faces) {
     for (int k = 0; k < 3; ++k) ++uses[UndirectedEdgeKey(t[k], t[(k + 1) % 3])];
   }
-  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
-                                          patch.split_faces.end());
   std::unordered_set<uint64_t> seen;
-  std::vector<int32_t> near;
-  for (size_t f = 0; f < patch.faces.size(); ++f) {
-    const Triangle& t = patch.faces[f];
-    const Box3 box = box_of(t);
-    std::vector<Triangle> faces = {t};
-    for (size_t g = 0; g < patch.faces.size(); ++g) {
-      if (g != f && box_of(patch.faces[g]).Meets(box)) {
-        faces.push_back(patch.faces[g]);
-      }
-    }
-    near.clear();
-    topology.face_tree->FacesMeeting(box, &near);
-    for (int32_t m : near) {
-      if (!split.count(m)) faces.push_back(mesh.triangles[m]);
-    }
+  for (size_t f = 0; f < checked; ++f) {
+    if (meets[f].empty()) continue;
+    std::vector<Triangle> set = {faces[f]};
+    for (int32_t g : meets[f]) set.push_back(faces[g]);
     int64_t pairs = 0;
-    Status s = CountPairsAmong(point, std::move(faces), 1, control, &pairs);
+    Status s = CountPairsAmong(point, std::move(set), 1, control, &pairs);
     if (!s.ok()) return s;
     if (pairs == 0) continue;
+    const Triangle& t = patch.faces[f];
     for (int k = 0; k < 3; ++k) {
       const int32_t a = t[k], b = t[(k + 1) % 3];
       const uint64_t key = UndirectedEdgeKey(a, b);

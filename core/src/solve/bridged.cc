@@ -274,6 +274,7 @@ Status SolveBridged(const std::vector<std::vector<int32_t>>& members,
       const int64_t bytes =
           EstimateTableBytes(static_cast<int64_t>(tris.size()), bi);
       if (bytes > memory_budget) {
+        if (found) break;  // keep the surface an earlier tree gave
         return MakeStatus(StatusCode::kResourceExhausted,
                           "estimated memory " + std::to_string(bytes >> 20) +
                               " MiB for the bridged polygon exceeds the "

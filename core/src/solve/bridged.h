@@ -31,7 +31,7 @@
 namespace dot {
 
 struct BridgedSolution {
-  double cost = 0;                  // of the DP (bridges' bending excluded)
+  double cost = 0;  // the surface's, every term (bridges' bending too)
   std::vector<Triangle> triangles;  // loop positions; loops run along them
   std::vector<std::pair<int32_t, int32_t>> bridges;  // loop positions
   int32_t trees_tried = 0;

@@ -148,7 +148,9 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
       m << (all ? "" : " (edge protection splits them)");
     } else if (loop->LoopCount() > 2) {
       m << s.message << " (approximate: bridges first, then the optimum "
-        << "for them; another tree of bridges may have a surface)";
+        << "for them; another tree of bridges may have a surface; three or "
+        << "more loops keep their given directions: the surface on the left "
+        << "of each)";
     } else if (only_reversed) {
       m << "no surface joins the loops with loop 1 running its given way; "
            "one does with it reversed (let the solver reverse loops: drop "
