@@ -141,6 +141,15 @@ def record(call, request):
     return [bytes(b) for b in call(request, timeout=30)]
 
 
+def record_triangulate(channel, request):
+    """The Triangulate response stream of `request`, as the server sent
+    its bytes."""
+    return record(channel.unary_stream(
+        "/dot.v1.Triangulator/Triangulate",
+        request_serializer=pb.TriangulateRequest.SerializeToString,
+        response_deserializer=lambda b: b), request)
+
+
 def read_obj(path):
     v, f = [], []
     for line in open(path):
@@ -272,7 +281,6 @@ def main():
                 except dot_client.DotError:
                     time.sleep(0.05)
         channel = grpc.insecure_channel(address)
-        raw = lambda b: b  # noqa: E731
 
         # Triangulate: the bytes as the server sent them.
         points = polygon()
@@ -284,10 +292,7 @@ def main():
         request.options.omit_input_vertices = True
         request.options.progress_interval_ms = 1
         request.options.no_cache = True
-        tri = record(channel.unary_stream(
-            "/dot.v1.Triangulator/Triangulate",
-            request_serializer=pb.TriangulateRequest.SerializeToString,
-            response_deserializer=raw), request)
+        tri = record_triangulate(channel, request)
         xyz = os.path.join(tmp, "polygon.xyz")
         with open(xyz, "w") as f:
             for p in points:
@@ -329,10 +334,7 @@ def main():
         request.options.omit_input_vertices = True
         request.options.progress_interval_ms = 1
         request.options.no_cache = True
-        loops_tri = record(channel.unary_stream(
-            "/dot.v1.Triangulator/Triangulate",
-            request_serializer=pb.TriangulateRequest.SerializeToString,
-            response_deserializer=raw), request)
+        loops_tri = record_triangulate(channel, request)
         xyz = os.path.join(tmp, "pants.xyz")
         with open(xyz, "w") as f:
             f.write("\n\n".join("\n".join(" ".join(repr(float(x)) for x in p)

@@ -105,8 +105,8 @@ TEST_F(FillHolesCliTest, HolesWithIslandsJoinOnePatchRemoteAndLocal) {
   r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " +
              Path("off.ply") + " --islands off");
   EXPECT_EQ(r.out.find("joins island"), std::string::npos) << r.out;
-  r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " +
-             Path("x.ply") + " --join 0,9");
+  r = Dotctl(flag_ + "fill-holes " + Path("ring.off") + " -o " + Path("x.ply") +
+             " --join 0,9");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("join group 0: there is no hole 9"), std::string::npos)
       << r.out;
