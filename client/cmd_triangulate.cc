@@ -48,7 +48,8 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
       "Triangulate polygon files (x y z lines, or OBJ v/l) into meshes. A\n"
       "file with several loops (blocks of lines separated by blank lines, or\n"
       "'l' lines closing into several loops) becomes one surface joining\n"
-      "them (today 2 loops).\n"
+      "them (two loops exactly; three or more by bridges first, an\n"
+      "approximation, each loop keeping its direction).\n"
       "Example: dotctl triangulate hole.xyz -o patch.obj --squared-dihedral 1");
   cmd->add_option("files", flags->inputs,
                   "polygon files or directories; - reads one polygon from "

@@ -49,8 +49,9 @@ void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
                 "split non-Delaunay polygon edges so more polygons succeed")
       ->group("Options");
   cmd->add_flag("--keep-loop-directions", f->keep_loop_directions,
-                "several loops: keep each loop's direction (by default the "
-                "solver may reverse loops after the first)")
+                "two loops: keep the second loop's direction (by default the "
+                "solver may reverse it; three or more loops always keep "
+                "theirs)")
       ->group("Options");
   cmd->add_flag("--validate", f->validate,
                 "count self-intersecting triangle pairs of the result")

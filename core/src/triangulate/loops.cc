@@ -147,10 +147,11 @@ Status Solve(const std::vector<Triangle>& tris, const MetricWeights& weights,
       if (r->non_delaunay_edges.size() > 10) m << " ...";
       m << (all ? "" : " (edge protection splits them)");
     } else if (loop->LoopCount() > 2) {
-      m << s.message << " (approximate: bridges first, then the optimum "
-        << "for them; another tree of bridges may have a surface; three or "
-        << "more loops keep their given directions: the surface on the left "
-        << "of each)";
+      m << "three or more loops keep their given directions (the surface "
+        << "on the left of each: rims that face each other, as the small "
+        << "rims of a branch and the wide one, run opposite ways; reverse a "
+        << "loop drawn the other way round); " << s.message
+        << " (approximate: bridges first, then the optimum for them)";
     } else if (only_reversed) {
       m << "no surface joins the loops with loop 1 running its given way; "
            "one does with it reversed (let the solver reverse loops: drop "
