@@ -42,6 +42,7 @@ struct FillFlags {
   double density = 0;
   int fairing_continuity = 1;
   bool no_repair = false, ascii = false, dry_run = false, triangles = false;
+  bool allow_input_intersections = false;
   bool json = false, local = false;
   uint32_t time_budget_ms = 0;
 
@@ -68,6 +69,7 @@ struct FillFlags {
     o.set_no_repair(no_repair);
     o.set_time_budget_ms(time_budget_ms);
     o.set_dry_run(dry_run);
+    o.set_allow_input_intersections(allow_input_intersections);
     o.set_keep_polygons(!triangles);
     return o;
   }
@@ -183,6 +185,10 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
       ->group("Refine and fair");
   cmd->add_flag("--no-repair", f->no_repair,
                 "use the mesh as it is (no vertex merging, orientation, ...)");
+  cmd->add_flag("--allow-input-intersections", f->allow_input_intersections,
+                "fill a hole whose every patch meets the mesh when the mesh "
+                "already intersects itself near it (the report counts both); "
+                "by default such holes stay open");
   cmd->add_flag("--dry-run", f->dry_run,
                 "list the holes (size, place, selected or why not) and fill "
                 "none; nothing is written");

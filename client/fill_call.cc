@@ -221,6 +221,16 @@ std::vector<std::string> FillNotes(const v1::FillReport& r) {
     notes.push_back(std::to_string(r.unfilled()) +
                     " holes left open: see each hole's reason");
   }
+  const auto crossing = std::count_if(
+      r.holes().begin(), r.holes().end(), [](const v1::HoleReport& h) {
+        return h.status() == v1::HOLE_STATUS_FILLED &&
+               h.intersecting_pairs() > 0;
+      });
+  if (crossing > 0) {
+    notes.push_back(std::to_string(crossing) +
+                    " holes filled with patches that meet the mesh where it "
+                    "already intersects itself (--allow-input-intersections)");
+  }
   if (r.stopped() > 0) {
     notes.push_back(std::to_string(r.stopped()) +
                     " holes not filled: the fill stopped before them");

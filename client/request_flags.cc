@@ -33,8 +33,10 @@ void AddRequestFlags(CLI::App* cmd, RequestFlags* f) {
   cmd->add_option("--space", f->space,
                   "search space: auto (Delaunay, then all triangles for small "
                   "polygons), delaunay (never self-intersects), all (GK, may "
-                  "self-intersect)")
-      ->check(CLI::IsMember({"auto", "delaunay", "all"}))
+                  "self-intersect), delaunay_first (every triangle, Delaunay "
+                  "ones first: large polygons with no Delaunay "
+                  "triangulation; may self-intersect)")
+      ->check(CLI::IsMember({"auto", "delaunay", "all", "delaunay_first"}))
       ->capture_default_str()
       ->group("Options");
   cmd->add_option("--delaunay", f->delaunay,
@@ -65,7 +67,9 @@ v1::Options RequestFlags::ToOptions() const {
   v1::Options o;
   o.set_search_space(space == "delaunay" ? v1::SEARCH_SPACE_DELAUNAY
                      : space == "all"    ? v1::SEARCH_SPACE_ALL
-                                         : v1::SEARCH_SPACE_AUTO);
+                     : space == "delaunay_first"
+                         ? v1::SEARCH_SPACE_DELAUNAY_FIRST
+                         : v1::SEARCH_SPACE_AUTO);
   o.set_delaunay_backend(delaunay == "cgal"     ? v1::DELAUNAY_BACKEND_CGAL
                          : delaunay == "tetgen" ? v1::DELAUNAY_BACKEND_TETGEN
                                                 : v1::DELAUNAY_BACKEND_DEFAULT);

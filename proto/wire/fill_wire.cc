@@ -38,6 +38,7 @@ Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
   }
   o->repair = !wire.no_repair();
   o->dry_run = wire.dry_run();
+  o->allow_input_intersections = wire.allow_input_intersections();
   // Patches are new triangles in the sent mesh's ids: nothing to regroup.
   o->keep_polygons = wire.keep_polygons() &&
                      wire.answer() == v1::FILL_ANSWER_MESH && !wire.dry_run();
@@ -103,6 +104,8 @@ v1::Escalation EscalationToWire(Escalation escalation) {
       return v1::ESCALATION_PROTECTED_EDGES;
     case Escalation::kAllTriangles:
       return v1::ESCALATION_ALL_TRIANGLES;
+    case Escalation::kDelaunayFirst:
+      return v1::ESCALATION_DELAUNAY_FIRST;
   }
   return v1::ESCALATION_NONE;
 }
@@ -131,6 +134,7 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
     w->set_faired(h.faired);
     w->set_cost(h.cost);
     w->set_intersecting_pairs(h.intersecting_pairs);
+    w->set_input_pairs_near(h.input_pairs_near);
     w->set_triangulate_ms(h.triangulate_ms);
     w->set_refine_ms(h.refine_ms);
     w->set_fair_ms(h.fair_ms);
@@ -217,7 +221,7 @@ HoleStatus HoleStatusFromWire(v1::HoleStatus status) {
 
 Escalation EscalationFromWire(v1::Escalation escalation) {
   for (Escalation e : {Escalation::kDelaunay, Escalation::kProtectedEdges,
-                       Escalation::kAllTriangles}) {
+                       Escalation::kAllTriangles, Escalation::kDelaunayFirst}) {
     if (EscalationToWire(e) == escalation) return e;
   }
   return Escalation::kNone;

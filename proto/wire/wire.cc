@@ -34,6 +34,8 @@ SearchSpace FromWire(v1::SearchSpace s) {
       return SearchSpace::kDelaunay;
     case v1::SEARCH_SPACE_ALL:
       return SearchSpace::kAll;
+    case v1::SEARCH_SPACE_DELAUNAY_FIRST:
+      return SearchSpace::kDelaunayFirst;
     default:
       return SearchSpace::kAuto;
   }

@@ -30,10 +30,12 @@ TriangulateReactor::TriangulateReactor(JobRunner* runner,
   }
   job_->on_done = [this] { JobDone(); };
   // Small Delaunay-space calls without progress skip the handoff to a
-  // worker; 'all' can be slow at any size, so it always goes to the pool.
+  // worker; 'all' and 'delaunay_first' can be slow at any size, so they
+  // always go to the pool.
   const ServiceOptions& o = runner_->options();
   const bool small = interval.count() == 0 &&
                      job_->options.space != SearchSpace::kAll &&
+                     job_->options.space != SearchSpace::kDelaunayFirst &&
                      job_->problem.vertices.size() <=
                          static_cast<size_t>(o.inline_max_vertices);
   if (!runner_->Start(job_, small)) FinishWith(runner_->Overloaded());

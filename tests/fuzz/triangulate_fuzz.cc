@@ -211,7 +211,8 @@ void CheckOk(const dot::Problem& problem, const dot::Options& options,
       dot::ValidateSurface(r.vertices, loops, r.triangles, false);
   if (!report.valid()) Fail("invalid mesh: " + report.first_problem, r);
   const int64_t pairs = dot::CountIntersectingPairs(r.vertices, r.triangles);
-  if (options.space == dot::SearchSpace::kAll) {
+  if (options.space == dot::SearchSpace::kAll ||
+      options.space == dot::SearchSpace::kDelaunayFirst) {
     if (r.intersecting_pairs != pairs) {
       Fail("reported " + std::to_string(r.intersecting_pairs) +
                " intersecting pairs, the validator counts " +
@@ -299,7 +300,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   dot::Options options;
   options.space =
-      static_cast<dot::SearchSpace>(in.ConsumeIntegralInRange(0, 2));
+      static_cast<dot::SearchSpace>(in.ConsumeIntegralInRange(0, 3));
   options.protect_edges = in.ConsumeBool();
   options.validate_output = in.ConsumeBool();
   if (dot::TetgenAvailable() && in.ConsumeIntegralInRange(0, 3) == 0) {

@@ -173,7 +173,8 @@ def test_hole_status_and_escalation_names(client):
     assert names == {"ESCALATION_NONE": "",
                      "ESCALATION_DELAUNAY": "delaunay",
                      "ESCALATION_PROTECTED_EDGES": "protected_edges",
-                     "ESCALATION_ALL_TRIANGLES": "all_triangles"}
+                     "ESCALATION_ALL_TRIANGLES": "all_triangles",
+                     "ESCALATION_DELAUNAY_FIRST": "delaunay_first"}
     # A value this client does not know reads as its number.
     assert dot_client.HoleReport.from_proto(pb.HoleReport(status=9)).status \
         == "9"
@@ -190,9 +191,45 @@ def test_hole_status_and_escalation_names(client):
     g, gf = grid_with_hole(12)
     r = client.fill_holes(g, gf, stage="triangulate", loops_through=[0])
     rim = [h for h in r.report.holes if h.boundary_vertices == 44]
+    # The flat grid's rim: the patches over every triangle that avoid the
+    # mesh's chords all lie on the grid itself.
     assert [(h.status, h.escalation) for h in rim] == \
-        [("no_triangulation", "protected_edges")]
-    assert "not on any Delaunay triangle" in rim[0].reason
+        [("failed", "delaunay_first")]
+    assert "intersects the mesh" in rim[0].reason
+
+
+def pierced_grid(x_from):
+    """grid_with_hole(16) with a thin closed tetrahedron through its hole
+    along y = 8, from x = x_from to 9.6: every patch meets it; from
+    x_from < 6 on it crosses the grid too."""
+    v, f = grid_with_hole(16, slice(6, 10))
+    tip = np.array([[x_from, 8, -2], [9.6, 8, 2], [9.6, 8, -2], [9.6, 8.3, 0]])
+    n = len(v)
+    tet = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]) + n
+    return np.concatenate([v, tip]), np.concatenate([f, tet])
+
+
+def test_allow_input_intersections(client):
+    v, f = pierced_grid(1.6)
+    plain = client.fill_holes(v, f, stage="triangulate", skip_longest=True)
+    assert plain.report.filled == 0
+    (hole,) = [h for h in plain.report.holes if h.status == "failed"]
+    assert "intersects the mesh" in hole.reason
+    r = client.fill_holes(v, f, stage="triangulate", skip_longest=True,
+                          allow_input_intersections=True)
+    assert r.report.filled == 1
+    (hole,) = [h for h in r.report.holes if h.status == "filled"]
+    assert hole.intersecting_pairs > 0 and hole.input_pairs_near > 0
+    assert "already intersects itself" in hole.reason
+    # A clean input near the hole: the opt-in does not apply.
+    v, f = pierced_grid(7.0)
+    r = client.fill_holes(v, f, stage="triangulate", skip_longest=True,
+                          allow_input_intersections=True)
+    assert r.report.filled == 0
+    assert any("does not intersect itself near the hole" in h.reason
+               for h in r.report.holes)
+    with pytest.raises(dot_client.InvalidInput):
+        dot_client.FillOptions(allow_input_intersections="yes")
 
 
 def test_weights_and_options(client):

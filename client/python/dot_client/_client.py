@@ -533,6 +533,7 @@ class Client:
                    time_budget_ms: Optional[int] = None,
                    memory_budget_bytes: Optional[int] = None,
                    keep_polygons: Optional[bool] = None,
+                   allow_input_intersections: Optional[bool] = None,
                    point_data: Optional[Dict[str, ArrayLike]] = None,
                    corner_data: Optional[Dict[str, ArrayLike]] = None,
                    progress: Optional[Callable[[FillProgress], None]] = None,
@@ -576,7 +577,10 @@ class Client:
         output's first V vertices and, except faces listed in a hole's
         ``split_faces``, its first faces are the input's),
         ``keep_polygons`` (answer the polygons sent where no patch split
-        one, as a list of arrays, instead of triangles).
+        one, as a list of arrays, instead of triangles),
+        ``allow_input_intersections`` (fill a hole every patch of which
+        meets the mesh when the mesh already intersects itself near it;
+        its report counts both).
 
         Attributes (normals, colours, UVs, any float data): ``point_data``
         {name: (V, d) array}, a row per vertex, and ``corner_data`` {name:
@@ -613,7 +617,8 @@ class Client:
             fairing_continuity=fairing_continuity, no_repair=no_repair,
             time_budget_ms=time_budget_ms,
             memory_budget_bytes=memory_budget_bytes,
-            keep_polygons=keep_polygons)
+            keep_polygons=keep_polygons,
+            allow_input_intersections=allow_input_intersections)
         result: FillResult = self._fill(vertices, faces, o, "mesh", progress,
                                         request_id, timeout, cancel,
                                         point_data=point_data,

@@ -236,8 +236,13 @@ class HoleReport(_Plain):
     ``diameter`` (bounding-box diagonal), ``perimeter`` and ``centroid``
     (length-weighted, x y z) give the loop's size and place;
     ``escalation``, the search step that made the patch, is
-    ``"delaunay"``, ``"protected_edges"``, ``"all_triangles"`` or ``""``
-    (no patch); ``split_faces`` lists input faces split by edge protection.
+    ``"delaunay"``, ``"protected_edges"``, ``"all_triangles"``,
+    ``"delaunay_first"`` (every triangle, Delaunay ones first: large holes
+    with no Delaunay patch) or ``""`` (no patch); ``split_faces`` lists
+    input faces split by edge protection. ``intersecting_pairs`` is 0 on a
+    filled hole unless ``allow_input_intersections`` filled it over a
+    mesh that already intersects itself (``input_pairs_near`` such pairs
+    near it).
     Holes with islands: on a rim, ``joined`` lists the island loops its
     patch joins; on an island, ``joined_to`` is its rim's id (None
     otherwise) and its status is the rim's.
@@ -267,6 +272,7 @@ class HoleReport(_Plain):
     centroid: Tuple[float, ...] = ()
     joined: List[int] = field(default_factory=list)
     joined_to: Optional[int] = None
+    input_pairs_near: int = 0
 
     @classmethod
     def from_proto(cls, m: Any) -> "HoleReport":
@@ -729,7 +735,10 @@ class FillOptions(_Options):
     ``memory_budget_bytes``: lower the server's limits (0: the server's).
     ``keep_polygons``: :meth:`Client.fill_holes` answers the polygons sent
     (quads, n-gons) where no patch split one, instead of triangles
-    (default False).
+    (default False). ``allow_input_intersections``: fill a hole every
+    patch of which meets the mesh when the mesh already intersects itself
+    near it (its report keeps ``intersecting_pairs`` and
+    ``input_pairs_near``); default False: such holes stay open.
     """
     _weights_use = "fill"
 
@@ -749,6 +758,7 @@ class FillOptions(_Options):
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
     keep_polygons: bool = False
+    allow_input_intersections: bool = False
 
     def __post_init__(self) -> None:
         _set(self, "stage", check.choice("stage", self.stage,
@@ -794,6 +804,8 @@ class FillOptions(_Options):
         _set(self, "no_repair", check.flag("no_repair", self.no_repair))
         _set(self, "keep_polygons", check.flag("keep_polygons",
                                                self.keep_polygons))
+        _set(self, "allow_input_intersections", check.flag(
+            "allow_input_intersections", self.allow_input_intersections))
         _set(self, "time_budget_ms", check.integer("time_budget_ms",
                                                    self.time_budget_ms))
         _set(self, "memory_budget_bytes", check.integer(
@@ -827,4 +839,5 @@ class FillOptions(_Options):
         o.memory_budget_bytes = self.memory_budget_bytes
         o.dry_run = dry_run
         o.keep_polygons = self.keep_polygons
+        o.allow_input_intersections = self.allow_input_intersections
         return o

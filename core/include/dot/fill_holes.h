@@ -158,6 +158,16 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //                   channels (normals, colours, UVs, ...) are carried and
 //                   interpolated into every new corner (see fill_soup.h).
 //                   Default false.
+//  allow_input_intersections  a hole every patch of which meets the mesh
+//                   is filled anyway when the input already intersects
+//                   itself near it (pairs among the mesh faces whose
+//                   boxes meet the patch's) and the patch meets neither
+//                   itself nor its own split faces: its report keeps
+//                   intersecting_pairs (with the patch) and
+//                   input_pairs_near (those the input had), and its
+//                   reason says so. For meshes cut where they cross
+//                   themselves, where no patch can avoid them. Default
+//                   false: such holes stay open.
 //  dry_run          find and select the holes, fill none: every selected
 //                   hole is reported kListed with its size, the mesh is
 //                   returned unchanged. Default false.
@@ -175,6 +185,7 @@ struct FillOptions {
   int threads = 0;
   bool repair = true;
   bool keep_polygons = false;
+  bool allow_input_intersections = false;
   bool dry_run = false;
 
   static MetricWeights DefaultFillWeights();
@@ -195,7 +206,13 @@ enum class HoleStatus {
 std::string_view HoleStatusName(HoleStatus s);  // "filled", ...
 
 // Which search step produced a hole's patch.
-enum class Escalation { kNone, kDelaunay, kProtectedEdges, kAllTriangles };
+enum class Escalation {
+  kNone,
+  kDelaunay,
+  kProtectedEdges,
+  kAllTriangles,
+  kDelaunayFirst
+};
 std::string_view EscalationName(Escalation e);
 
 struct HoleReport {
@@ -216,13 +233,20 @@ struct HoleReport {
   Escalation escalation = Escalation::kNone;
   SpaceUsed space = SpaceUsed::kNone;
   Solver solver = Solver::kNone;
-  int32_t boundary_inserted = 0;     // vertices edge protection added
+  int32_t boundary_inserted = 0;  // vertices edge protection added
+  // Escalation::kDelaunayFirst: DOT patch triangles that are not Delaunay.
+  int32_t non_delaunay_triangles = 0;
   std::vector<int32_t> split_faces;  // input faces replaced by their pieces
   int32_t patch_triangles = 0;
-  int32_t refined_vertices = 0;    // interior vertices refinement added
-  bool faired = false;             // fairing ran and was kept
-  double cost = 0;                 // the DOT patch's weighted cost
-  int64_t intersecting_pairs = 0;  // of the kept patch (0 when filled)
+  int32_t refined_vertices = 0;  // interior vertices refinement added
+  bool faired = false;           // fairing ran and was kept
+  double cost = 0;               // the DOT patch's weighted cost
+  // Of the kept patch with itself and the mesh: 0 when filled, unless
+  // FillOptions::allow_input_intersections filled it over an input that
+  // already intersects itself, with input_pairs_near such pairs among the
+  // mesh faces near the patch.
+  int64_t intersecting_pairs = 0;
+  int64_t input_pairs_near = 0;
   double triangulate_ms = 0, refine_ms = 0, fair_ms = 0, check_ms = 0;
 };
 
@@ -317,6 +341,14 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control,
                           std::vector<std::pair<int32_t, int32_t>>* chords);
+// For FillOptions::allow_input_intersections: the pairs the patch makes
+// with itself and its split faces' pieces (`own_pairs`), and the pairs the
+// input already has among the mesh faces near the patch (`input_pairs`).
+Status InputIntersectionsNear(const MeshData& mesh,
+                              const MeshTopology& topology,
+                              int32_t first_new_id, const HolePatch& patch,
+                              const Control& control, int64_t* own_pairs,
+                              int64_t* input_pairs);
 
 // INVALID_ARGUMENT naming the first field out of its range (weights not
 // finite or all zero, density outside [0.1, 100], fairing_continuity

@@ -18,10 +18,18 @@
 
 namespace dot {
 
-enum class SearchSpace { kAuto, kDelaunay, kAll };
+enum class SearchSpace { kAuto, kDelaunay, kAll, kDelaunayFirst };
 // What actually produced a result.
-enum class SpaceUsed { kNone, kDelaunay3d, kPlanarDelaunay2d, kAll };
-enum class Solver { kNone, kDot1, kDot2, kGk1, kGk2 };
+enum class SpaceUsed {
+  kNone,
+  kDelaunay3d,
+  kPlanarDelaunay2d,
+  kAll,
+  kAllDelaunayFirst
+};
+// kGk2Greedy: kDelaunayFirst's cubic program with bending weights, which
+// prices each bend against the sub-chain's own optimum (as CGAL does).
+enum class Solver { kNone, kDot1, kDot2, kGk1, kGk2, kGk2Greedy };
 // Who computes the 3D Delaunay tetrahedralization. Both use exact
 // predicates; they can differ only in how they break cospherical ties.
 enum class DelaunayBackend { kCgal, kTetgen };
@@ -87,6 +95,9 @@ struct Problem {
 //                        Default: 40.
 //  all_space_hard_limit  An explicit kAll is refused above this many
 //                        vertices (its tables grow as n^3). Default: 400.
+//  delaunay_first_max_vertices  kDelaunayFirst is refused above this many
+//                        vertices (its time grows as n^3: about 2 s at
+//                        1,000 on the machines measured). Default: 2000.
 //  planar_tolerance      A polygon is planar when every vertex is within this
 //                        fraction of its bounding-box diagonal from its
 //                        least-squares plane. Default: 1e-6.
@@ -122,6 +133,7 @@ struct Options {
   int max_inserted_vertices = 100000;
   int all_space_max_vertices = 40;
   int all_space_hard_limit = 400;
+  int delaunay_first_max_vertices = 2000;
   double planar_tolerance = 1e-6;
   int64_t memory_budget_bytes = int64_t{2} << 30;
   bool validate_output = false;
@@ -141,6 +153,8 @@ struct Stats {
   int64_t table_bytes = 0;         // adjacency + DP tables
   int64_t estimated_bytes = 0;     // the estimate checked against the budget
   bool cache_hit = false;          // the search space came from the cache
+  // kDelaunayFirst: triangles of the result that are not Delaunay faces.
+  int64_t non_delaunay_triangles = 0;
   double validate_ms = 0, delaunay_ms = 0, adjacency_ms = 0, dp_ms = 0,
          tiling_ms = 0, total_ms = 0;
 };

@@ -14,6 +14,15 @@
 //  - kAll: every non-degenerate triangle on the vertices (GK1 / GK2): the
 //    unrestricted optimum, which may self-intersect; the result counts the
 //    intersecting pairs. Memory grows as n^3: for small n only.
+//  - kDelaunayFirst: every triangle, the Delaunay ones first (one loop):
+//    the cubic interval program of Gilbert and Klincsek (O(n^2) memory, up
+//    to Options::delaunay_first_max_vertices), minimizing first how many
+//    triangles are not Delaunay, then the cost (bending priced against each
+//    sub-chain's own optimum: exact for per-triangle weights, an
+//    approximation with bending weights, Solver::kGk2Greedy). May
+//    self-intersect only where it leaves the Delaunay triangles; the result
+//    counts the intersecting pairs. For polygons with no Delaunay
+//    triangulation that are too large for kAll.
 //  - kAuto: kDelaunay, then kAll when no Delaunay triangulation exists and
 //    n <= Options::all_space_max_vertices, accepted only when its optimum is
 //    intersection-free (otherwise kNoTriangulation, saying so).

@@ -262,9 +262,19 @@ void FillAttempt(const MeshData& mesh, const MeshTopology& topo,
     }
   }
   r.check_ms = MsSince(t0);
+  if (r.escalation == Escalation::kDelaunayFirst) {
+    r.reason =
+        "no triangulation over Delaunay triangles: every triangle, "
+        "Delaunay ones first (" +
+        std::to_string(r.non_delaunay_triangles) + " of " +
+        std::to_string(dot_patch.faces.size()) + " not Delaunay)" +
+        (r.reason.empty() ? "" : "; " + r.reason);
+  }
   if (r.intersecting_pairs > 0) {
     r.status = HoleStatus::kFailed;
-    r.reason = "every patch found intersects the mesh (" +
+    r.reason = (r.escalation == Escalation::kDelaunayFirst ? r.reason + "; but "
+                                                           : std::string()) +
+               "every patch found intersects the mesh (" +
                std::to_string(r.intersecting_pairs) +
                " pairs of faces): left open";
     *met = dot_patch;
@@ -278,9 +288,10 @@ void FillAttempt(const MeshData& mesh, const MeshTopology& topo,
 // them), up to kAvoidRounds more.
 constexpr int kAvoidRounds = 3;
 
-void FillOne(const MeshData& mesh, const MeshTopology& topo,
-             const std::vector<const HoleLoop*>& loops,
-             const FillOptions& options, const Control& control, HoleWork* w) {
+void FillAvoiding(const MeshData& mesh, const MeshTopology& topo,
+                  const std::vector<const HoleLoop*>& loops,
+                  const FillOptions& options, const Control& control,
+                  HoleWork* w) {
   const auto first_new = static_cast<int32_t>(mesh.vertices.size());
   const HoleReport initial = w->report;
   std::vector<std::pair<int32_t, int32_t>> avoid;
@@ -323,6 +334,50 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     }
     if (retry.report.status != HoleStatus::kFailed) return;  // keep the first
     *w = std::move(retry);
+  }
+}
+
+// FillOptions::allow_input_intersections: a hole left open because its
+// patch meets the mesh is filled when the input already intersects itself
+// near it and the patch meets neither itself nor its split faces.
+void AllowInputIntersections(const MeshData& mesh, const MeshTopology& topo,
+                             const Control& control, HoleWork* w) {
+  HoleReport& r = w->report;
+  if (!w->status.ok() || r.status != HoleStatus::kFailed ||
+      r.intersecting_pairs <= 0 || w->patch.faces.empty()) {
+    return;
+  }
+  int64_t own = 0, input = 0;
+  const Status s = InputIntersectionsNear(
+      mesh, topo, static_cast<int32_t>(mesh.vertices.size()), w->patch, control,
+      &own, &input);
+  if (!s.ok()) {
+    w->status = s;
+    return;
+  }
+  r.input_pairs_near = input;
+  if (own > 0 || input == 0) {
+    r.reason += own > 0 ? "; allow_input_intersections does not apply: the "
+                          "patch intersects itself (" +
+                              std::to_string(own) + " pairs)"
+                        : "; allow_input_intersections does not apply: the "
+                          "mesh does not intersect itself near the hole";
+    return;
+  }
+  r.status = HoleStatus::kFilled;
+  r.reason = "filled although its patch meets the mesh (" +
+             std::to_string(r.intersecting_pairs) +
+             " pairs of faces): the input already intersects itself there (" +
+             std::to_string(input) +
+             " pairs near the hole) and allow_input_intersections is on";
+}
+
+void FillOne(const MeshData& mesh, const MeshTopology& topo,
+             const std::vector<const HoleLoop*>& loops,
+             const FillOptions& options, const Control& control, HoleWork* w) {
+  FillAvoiding(mesh, topo, loops, options, control, w);
+  if (options.allow_input_intersections) {
+    AllowInputIntersections(mesh, topo, control, w);
   }
 }
 
@@ -813,6 +868,8 @@ std::string_view EscalationName(Escalation e) {
       return "protected_edges";
     case Escalation::kAllTriangles:
       return "all_triangles";
+    case Escalation::kDelaunayFirst:
+      return "delaunay_first";
   }
   return "?";
 }

@@ -33,6 +33,45 @@ Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
   return CountIntersectingPairs(points, faces, checked, control, pairs);
 }
 
+namespace {
+
+// A patch id's position: mesh ids, then the patch's new vertices.
+std::function<const Vec3&(int32_t)> PatchPoints(const MeshData& mesh,
+                                                int32_t first_new_id,
+                                                const HolePatch& patch) {
+  return [&mesh, &patch, first_new_id](int32_t id) -> const Vec3& {
+    return id < first_new_id ? mesh.vertices[id]
+                             : patch.new_vertices[id - first_new_id];
+  };
+}
+
+// The patch faces first, then its split faces' pieces, then the mesh faces
+// (other than those split) whose boxes meet the patch's; returns how many
+// faces the first two make.
+size_t PatchAndNearFaces(const MeshData& mesh, const MeshTopology& topology,
+                         const std::function<const Vec3&(int32_t)>& point,
+                         const HolePatch& patch, std::vector<Triangle>* faces) {
+  *faces = patch.faces;
+  for (const auto& pieces : patch.pieces) {
+    faces->insert(faces->end(), pieces.begin(), pieces.end());
+  }
+  const size_t own = faces->size();
+  Box3 box;
+  for (const Triangle& t : patch.faces) {
+    for (int32_t v : t) box.Add(point(v));
+  }
+  std::vector<int32_t> near;
+  topology.face_tree->FacesMeeting(box, &near);
+  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
+                                          patch.split_faces.end());
+  for (int32_t f : near) {
+    if (!split.count(f)) faces->push_back(mesh.triangles[f]);
+  }
+  return own;
+}
+
+}  // namespace
+
 Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs) {
@@ -40,27 +79,34 @@ Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
     return MakeStatus(StatusCode::kInternal,
                       "PatchIntersections needs BuildMeshTopology's face tree");
   }
-  auto point = [&](int32_t id) -> const Vec3& {
-    return id < first_new_id ? mesh.vertices[id]
-                             : patch.new_vertices[id - first_new_id];
-  };
-  Box3 box;
-  for (const Triangle& t : patch.faces) {
-    for (int32_t v : t) box.Add(point(v));
-  }
-  std::vector<Triangle> faces = patch.faces;
-  for (const auto& pieces : patch.pieces) {
-    faces.insert(faces.end(), pieces.begin(), pieces.end());
-  }
-  std::vector<int32_t> near;
-  topology.face_tree->FacesMeeting(box, &near);
-  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
-                                          patch.split_faces.end());
-  for (int32_t f : near) {
-    if (!split.count(f)) faces.push_back(mesh.triangles[f]);
-  }
+  const auto point = PatchPoints(mesh, first_new_id, patch);
+  std::vector<Triangle> faces;
+  PatchAndNearFaces(mesh, topology, point, patch, &faces);
   return CountPairsAmong(point, std::move(faces), patch.faces.size(), control,
                          pairs);
+}
+
+Status InputIntersectionsNear(const MeshData& mesh,
+                              const MeshTopology& topology,
+                              int32_t first_new_id, const HolePatch& patch,
+                              const Control& control, int64_t* own_pairs,
+                              int64_t* input_pairs) {
+  *own_pairs = *input_pairs = 0;
+  if (!topology.face_tree) {
+    return MakeStatus(StatusCode::kInternal,
+                      "InputIntersectionsNear needs BuildMeshTopology's face "
+                      "tree");
+  }
+  const auto point = PatchPoints(mesh, first_new_id, patch);
+  std::vector<Triangle> faces;
+  const size_t own = PatchAndNearFaces(mesh, topology, point, patch, &faces);
+  Status s = CountPairsAmong(
+      point, std::vector<Triangle>(faces.begin(), faces.begin() + own),
+      patch.faces.size(), control, own_pairs);
+  if (!s.ok()) return s;
+  return CountPairsAmong(
+      point, std::vector<Triangle>(faces.begin() + own, faces.end()),
+      faces.size() - own, control, input_pairs);
 }
 
 Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
@@ -73,27 +119,9 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                       "IntersectingChords needs BuildMeshTopology's face tree");
   }
   RunTicker ticker(control, "the intersection check");
-  auto point = [&](int32_t id) -> const Vec3& {
-    return id < first_new_id ? mesh.vertices[id]
-                             : patch.new_vertices[id - first_new_id];
-  };
-  // The patch faces first, then the split faces' pieces and the mesh
-  // faces near the patch (as PatchIntersections sees them).
-  std::vector<Triangle> faces = patch.faces;
-  for (const auto& pieces : patch.pieces) {
-    faces.insert(faces.end(), pieces.begin(), pieces.end());
-  }
-  Box3 all;
-  for (const Triangle& t : patch.faces) {
-    for (int32_t v : t) all.Add(point(v));
-  }
-  std::vector<int32_t> near;
-  topology.face_tree->FacesMeeting(all, &near);
-  const std::unordered_set<int32_t> split(patch.split_faces.begin(),
-                                          patch.split_faces.end());
-  for (int32_t f : near) {
-    if (!split.count(f)) faces.push_back(mesh.triangles[f]);
-  }
+  const auto point = PatchPoints(mesh, first_new_id, patch);
+  std::vector<Triangle> faces;  // as PatchIntersections sees them
+  PatchAndNearFaces(mesh, topology, point, patch, &faces);
   // Each patch face with the faces whose boxes meet its own (one box
   // intersection pass), then the exact test on that small set.
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // One hole -> one DOT patch: its loops as a Problem (boundary normals, the
 // faces across its edges, its existing chords forbidden), the escalation
-// Delaunay -> edge protection -> all triangles, and the split of the faces
-// across boundary edges that edge protection subdivided.
+// Delaunay -> edge protection -> all triangles (small holes) or every
+// triangle with the Delaunay ones first (large ones), and the split of the
+// faces across boundary edges that edge protection subdivided.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -215,6 +216,12 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
       {Escalation::kProtectedEdges, SearchSpace::kDelaunay, true}};
   if (n <= options.all_space_max_vertices) {
     attempts.push_back({Escalation::kAllTriangles, SearchSpace::kAll, false});
+  } else if (loops.size() == 1 &&
+             n <= options.triangulate.delaunay_first_max_vertices) {
+    // Cubic time, quadratic memory: the patch may cross itself or the mesh
+    // where it leaves the Delaunay triangles; the fill's check decides.
+    attempts.push_back(
+        {Escalation::kDelaunayFirst, SearchSpace::kDelaunayFirst, false});
   }
   Result r;
   std::string why;
@@ -249,6 +256,8 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
   report->solver = r.solver;
   report->cost = r.total_cost;
   report->boundary_inserted = static_cast<int32_t>(r.inserted.size());
+  report->non_delaunay_triangles =
+      static_cast<int32_t>(r.stats.non_delaunay_triangles);
 
   auto global = [&](int32_t id) {
     return id < n ? hole.vertices[id] : first_new_id + (id - n);

@@ -13,6 +13,8 @@ std::string_view SearchSpaceName(SearchSpace s) {
       return "delaunay";
     case SearchSpace::kAll:
       return "all";
+    case SearchSpace::kDelaunayFirst:
+      return "delaunay_first";
   }
   return "?";
 }
@@ -31,6 +33,8 @@ std::string_view SpaceUsedName(SpaceUsed s) {
       return "planar_cdt2d";
     case SpaceUsed::kAll:
       return "all";
+    case SpaceUsed::kAllDelaunayFirst:
+      return "all_delaunay_first";
   }
   return "?";
 }
@@ -47,6 +51,8 @@ std::string_view SolverName(Solver s) {
       return "GK1";
     case Solver::kGk2:
       return "GK2";
+    case Solver::kGk2Greedy:
+      return "GK2-greedy";
   }
   return "?";
 }

@@ -22,6 +22,7 @@
 #include "search_space/forbidden_edges.h"
 #include "search_space/planar_cdt.h"
 #include "solve/adjacency.h"
+#include "solve/interval_dp.h"
 #include "solve/prepared_space.h"
 #include "solve/solvers.h"
 #include "triangulate/loops.h"
@@ -215,6 +216,70 @@ Status PrepareAll(const MetricWeights& weights, const Chords& forbidden,
   return s;
 }
 
+// Every triangle of one loop, its Delaunay faces first (interval_dp.h).
+Status SolveDelaunayFirst(const PlaneFit& fit, bool planar,
+                          const MetricWeights& weights, const Problem& problem,
+                          const Options& options, const Control& control,
+                          const PolygonLoop& loop, Result* r) {
+  const int64_t n = loop.size();
+  Stats& st = r->stats;
+  if (n > options.delaunay_first_max_vertices) {
+    return MakeStatus(StatusCode::kResourceExhausted,
+                      "search space 'delaunay_first' is limited to " +
+                          std::to_string(options.delaunay_first_max_vertices) +
+                          " vertices; the polygon has " + std::to_string(n));
+  }
+  st.estimated_bytes = IntervalDpBytes(n);
+  if (st.estimated_bytes > options.memory_budget_bytes) {
+    return MakeStatus(
+        StatusCode::kResourceExhausted,
+        "estimated memory " + std::to_string(st.estimated_bytes >> 20) +
+            " MiB for the tables of " + std::to_string(n) +
+            " vertices exceeds the budget of " +
+            std::to_string(options.memory_budget_bytes >> 20) + " MiB");
+  }
+  // The preferred triangles: the Delaunay faces, without edge protection
+  // (the loop keeps its vertices).
+  Options plain = options;
+  plain.protect_edges = false;
+  PreparedSpace delaunay;
+  delaunay.loop = loop;
+  Status s = PrepareDelaunay(fit, planar, false, false, {}, plain, control,
+                             &delaunay, &st);
+  if (!s.ok() && s.code != StatusCode::kNoTriangulation) return s;
+  IntervalDpInput in;
+  in.points = loop.Points();
+  if (weights[Metric::kNormalDeviation] != 0) {
+    for (int32_t id : loop.ids)
+      in.normals.push_back(Normalized(loop.normals[id]));
+  }
+  in.edge_normals = loop.EdgeNormalsByPosition();
+  in.weights = weights;
+  in.preferred = std::move(delaunay.triangles);
+  in.forbidden = problem.forbidden_edges;
+  Report(control, Stage::kDynamicProgram, 0);
+  const auto t0 = Clock::now();
+  IntervalDpSolution sol;
+  s = SolveIntervalDp(in, control, &sol);
+  st.dp_ms = MsSince(t0);
+  st.search_triangles = n * (n - 1) * (n - 2) / 6;
+  st.table_bytes = sol.table_bytes;
+  st.non_delaunay_triangles = sol.not_preferred;
+  r->space_used = SpaceUsed::kAllDelaunayFirst;
+  r->solver = HasBiTriangleWeight(weights) ? Solver::kGk2Greedy : Solver::kGk1;
+  if (s.code == StatusCode::kNoTriangulation) {
+    s.message =
+        "no triangulation among all triangles avoids the forbidden chords "
+        "and degenerate triangles";
+  }
+  if (!s.ok()) return s;
+  r->triangles.clear();
+  for (const Triangle& t : sol.triangles) {
+    r->triangles.push_back({loop.ids[t[0]], loop.ids[t[1]], loop.ids[t[2]]});
+  }
+  return OkStatus();
+}
+
 }  // namespace
 
 std::vector<std::vector<int32_t>> ResultLoops(const Result& r) {
@@ -284,7 +349,16 @@ Result Triangulate(const Problem& problem, const Options& options,
   std::shared_ptr<const PreparedSpace> space;
   Status s;
   bool fallback = false;
-  if (several) {
+  if (options.space == SearchSpace::kDelaunayFirst) {
+    if (several) {
+      s = InvalidArgument(
+          "search space 'delaunay_first' takes one loop; this problem has " +
+          std::to_string(problem.loop_sizes.size()));
+    } else {
+      s = SolveDelaunayFirst(fit, r.planar, work_weights, problem, options,
+                             control, loop, &r);
+    }
+  } else if (several) {
     loop.sizes = problem.loop_sizes;
     s = SolveLoops(fit, r.planar, work_weights, problem, options, control,
                    &loop, &r);
@@ -370,7 +444,8 @@ Result Triangulate(const Problem& problem, const Options& options,
           "ratios matter");
       r.triangles.clear();
     }
-    if (options.validate_output || r.space_used == SpaceUsed::kAll) {
+    if (options.validate_output || r.space_used == SpaceUsed::kAll ||
+        r.space_used == SpaceUsed::kAllDelaunayFirst) {
       // On the work coordinates: the same answer (exact scaling, exact
       // predicates), without extreme magnitudes.
       r.intersecting_pairs =
