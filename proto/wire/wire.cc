@@ -71,8 +71,7 @@ Status ProblemFromRequest(const v1::TriangulateRequest& request,
                            " values; expected none or " +
                            std::to_string(c.size()));
   }
-  if (request.options().search_space() < 0 ||
-      request.options().search_space() > v1::SEARCH_SPACE_ALL) {
+  if (!v1::SearchSpace_IsValid(request.options().search_space())) {
     return InvalidArgument("options.search_space " +
                            std::to_string(request.options().search_space()) +
                            " is not a known search space");

@@ -97,6 +97,13 @@ def test_search_space_all_and_backends(client):
     assert t.summary.delaunay_backend == "tetgen"
     c = client.triangulate(monkey_saddle(30), delaunay_backend="CGAL")
     assert c.summary.delaunay_backend == "cgal"
+    # Every triangle, Delaunay ones first: the cubic search, validated.
+    d = client.triangulate(monkey_saddle(60), search_space="delaunay_first",
+                           squared_dihedral=1)
+    assert d.summary.search_space_used == "all_delaunay_first"
+    assert d.summary.solver == "GK2-greedy"
+    assert d.summary.intersecting_pairs == 0
+    assert len(d.triangles) == 58
 
 
 def test_cache_hit_on_a_re_solve(client):

@@ -82,6 +82,11 @@ struct Run {
   std::vector<double> hole_ms;    // per hole, median over runs
   std::vector<bool> hole_cubic;   // CGAL: the cubic search ran
   int escalated = 0, fair_failed = 0, reverted = 0;
+  int delaunay_first = 0;  // dot: holes filled by the delaunay_first step
+  // dot with allow_input_intersections: holes filled whose patch meets
+  // the mesh, and the pairs they report (theirs with the mesh).
+  int crossing_holes = 0;
+  int64_t crossing_pairs = 0;
   int not_refined = 0;    // dot: neighbourhood not manifold (pinched)
   double build_ms = NAN;  // CGAL: building the Surface_mesh (median)
   std::vector<std::string> open_reasons;  // dot: holes left open, and why
@@ -112,7 +117,8 @@ Sample Repeat(const Config& config, Fn once) {
 }
 
 Run RunOurs(const Config& config, const Case& c, const Holes& holes,
-            FillStage stage, int threads, FillResult* last);
+            FillStage stage, int threads, FillResult* last,
+            bool allow_input_intersections = false);
 
 // Vertex ids of a CGAL output in the input's numbering: copies of an input
 // point (orient_polygon_soup's duplicates) are that input vertex; new
@@ -142,6 +148,8 @@ struct Row {
   int64_t truth_pairs = -1;  // of the ground truth with the input
   FillStage stage;
   Run dot, dot_mt, cgal;
+  // dot with allow_input_intersections, run where dot left holes open.
+  Run dot_allow;
   int cubic_holes = 0;
   double dot_cubic_ms = NAN, cgal_cubic_ms = NAN;
 };

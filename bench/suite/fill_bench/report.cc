@@ -35,6 +35,14 @@ struct StageSummary {
   int dist_meshes = 0, dist_not_worse = 0;
   std::vector<double> cubic_speedup;  // where both filled
   int cubic_holes = 0, cubic_cgal_filled = 0, cubic_dot_open = 0;
+  int delaunay_first = 0;  // holes dot filled by that step
+  // allow_input_intersections where dot left holes open: holes it then
+  // fills, those of them whose patch meets the mesh, their pairs, and the
+  // outputs with non-manifold or misoriented edges (should be none).
+  int dot_open = 0, dot_open_crossing_input = 0, allow_filled = 0,
+      allow_crossing = 0, allow_nm = 0;
+  int64_t allow_pairs = 0;
+  std::vector<double> cubic_dot_ms, cubic_cgal_ms;  // holes both filled
 };
 
 StageSummary Summarize(const std::vector<Row>& rows, FillStage stage) {
@@ -44,6 +52,20 @@ StageSummary Summarize(const std::vector<Row>& rows, FillStage stage) {
     ++s.meshes;
     s.holes += row.holes;
     s.dot_filled += row.dot.holes_filled;
+    s.delaunay_first += row.dot.delaunay_first;
+    const int open_holes = row.holes - row.dot.holes_filled;
+    s.dot_open += open_holes;
+    if (row.truth_pairs > 0 || row.input_pairs > 0) {
+      s.dot_open_crossing_input += open_holes;
+    }
+    if (row.dot_allow.status == "ok") {
+      s.allow_filled += row.dot_allow.holes_filled - row.dot.holes_filled;
+      s.allow_crossing += row.dot_allow.crossing_holes;
+      s.allow_pairs += row.dot_allow.crossing_pairs;
+      s.allow_nm +=
+          row.dot_allow.judged && (row.dot_allow.verdict.non_manifold > 0 ||
+                                   row.dot_allow.verdict.misoriented > 0);
+    }
     const bool cgal_ok = row.cgal.status == "ok";
     s.cgal_done += cgal_ok;
     s.cgal_timeout += row.cgal.status.rfind("timeout", 0) == 0;
@@ -110,6 +132,8 @@ StageSummary Summarize(const std::vector<Row>& rows, FillStage stage) {
         }
         if (row.dot.hole_ms[k] > 0) {
           s.cubic_speedup.push_back(row.cgal.hole_ms[k] / row.dot.hole_ms[k]);
+          s.cubic_dot_ms.push_back(row.dot.hole_ms[k]);
+          s.cubic_cgal_ms.push_back(row.cgal.hole_ms[k]);
         }
       }
     }
@@ -159,20 +183,22 @@ void WriteCsv(const Config& config, const std::vector<Row>& rows) {
          "truth_intersecting_pairs,per_hole_ms_sum\n";
   for (const Row& row : rows) {
     const std::pair<const char*, const Run*> runs[] = {
-        {"dot", &row.dot}, {"dot_mt", &row.dot_mt}, {"cgal", &row.cgal}};
+        {"dot", &row.dot},
+        {"dot_mt", &row.dot_mt},
+        {"cgal", &row.cgal},
+        {"dot_allow", &row.dot_allow}};
     for (const auto& [method, r] : runs) {
+      if (r->status == "skipped") continue;
       const bool cgal = std::string(method) == "cgal";
       const Verdict& v = r->verdict;
       csv << row.c->name << "," << row.c->kind << "," << row.c->base << ","
           << row.vertices << "," << row.faces << "," << row.loops << ","
           << row.holes << "," << row.pinched << "," << row.max_loop << ","
           << FillStageName(row.stage) << "," << method << ","
-          << (cgal                           ? "1"
-              : std::string(method) == "dot" ? "1"
-                                             : "0")
-          << "," << r->status << "," << r->time.runs << "," << r->time.ms << ","
-          << r->time.heap << "," << r->loops << "," << r->loops_filled << ","
-          << r->holes_filled << ",";
+          << (std::string(method) == "dot_mt" ? "0" : "1") << "," << r->status
+          << "," << r->time.runs << "," << r->time.ms << "," << r->time.heap
+          << "," << r->loops << "," << r->loops_filled << "," << r->holes_filled
+          << ",";
       if (r->judged) {
         csv << v.new_faces << "," << v.degenerate << "," << v.pairs << ","
             << v.closed << "," << v.non_manifold << "," << v.misoriented << ","
@@ -320,7 +346,23 @@ void WriteReport(const Config& config, const std::vector<Row>& rows,
                : fast == static_cast<int>(s.cubic_speedup.size())
                    ? "**met**"
                    : "**missed**")
-           << ").\n";
+           << "); dot slower than CGAL on "
+           << CountAtMost(s.cubic_speedup, 1 - 1e-12)
+           << " of them (issue 19: none), dot's time there median "
+           << Fixed(Median(s.cubic_dot_ms), 0) << " ms, CGAL's "
+           << Fixed(Median(s.cubic_cgal_ms), 0)
+           << " ms. Holes filled by every triangle with the Delaunay ones "
+              "first (the last step, for large holes with no Delaunay "
+              "patch): "
+           << s.delaunay_first << ". Holes dot left open: " << s.dot_open
+           << ", " << s.dot_open_crossing_input
+           << " of them in meshes whose input or removed surface crosses the "
+              "mesh; with allow_input_intersections dot fills "
+           << s.allow_filled << " more (" << s.allow_crossing
+           << " of its holes report patches meeting the mesh, " << s.allow_pairs
+           << " pairs in all; outputs with non-manifold or misoriented "
+              "edges: "
+           << s.allow_nm << ").\n";
   }
   report << "\nEscalations and fallbacks (holes, summed over meshes):\n\n";
   for (FillStage stage : kStages) {
@@ -335,7 +377,7 @@ void WriteReport(const Config& config, const std::vector<Row>& rows,
       cgal_fair += row.cgal.fair_failed;
     }
     report << "- " << FillStageName(stage) << ": dot patches from edge "
-           << "protection or all triangles " << escalated
+           << "protection, all triangles or Delaunay first " << escalated
            << "; refinement undone (it intersected) " << reverted
            << "; not refined (neighbourhood not manifold, e.g. pinched) "
            << not_refined << "; fairing failed or undone " << dot_fair

@@ -10,11 +10,13 @@ namespace dot::bench::fill {
 namespace {}  // namespace
 
 Run RunOurs(const Config& config, const Case& c, const Holes& holes,
-            FillStage stage, int threads, FillResult* last) {
+            FillStage stage, int threads, FillResult* last,
+            bool allow_input_intersections) {
   Run run;
   FillOptions options;
   options.stage = stage;
   options.threads = threads;
+  options.allow_input_intersections = allow_input_intersections;
   // The use case the server and dotctl run. The case's mesh was repaired
   // once when it was loaded, and CGAL gets it that way too, so the timed
   // run skips the repair (it only takes the triangles over).
@@ -61,7 +63,14 @@ Run RunOurs(const Config& config, const Case& c, const Holes& holes,
                                  ": " + h.reason);
     }
     run.escalated += h.escalation == Escalation::kProtectedEdges ||
-                     h.escalation == Escalation::kAllTriangles;
+                     h.escalation == Escalation::kAllTriangles ||
+                     h.escalation == Escalation::kDelaunayFirst;
+    run.delaunay_first += h.status == HoleStatus::kFilled &&
+                          h.escalation == Escalation::kDelaunayFirst;
+    if (h.status == HoleStatus::kFilled && h.intersecting_pairs > 0) {
+      ++run.crossing_holes;
+      run.crossing_pairs += h.intersecting_pairs;
+    }
     // Holes refinement left without new vertices have nothing to fair.
     run.fair_failed += h.status == HoleStatus::kFilled &&
                        (h.reason.find("fairing failed") != std::string::npos ||

@@ -333,14 +333,16 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
 // Intersecting pairs of patch faces with each other and with the mesh faces
 // near the patch (exact predicates), into `pairs`; stops when `control`
 // says so. IntersectingChords: the interior edges between mesh vertices of
-// the patch faces in such pairs, each once.
+// the patch faces in such pairs, each once (`own_only`: in pairs with
+// other patch faces or the split faces' pieces alone).
 Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs);
 Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control,
-                          std::vector<std::pair<int32_t, int32_t>>* chords);
+                          std::vector<std::pair<int32_t, int32_t>>* chords,
+                          bool own_only = false);
 // For FillOptions::allow_input_intersections: the pairs the patch makes
 // with itself and its split faces' pieces (`own_pairs`), and the pairs the
 // input already has among the mesh faces near the patch (`input_pairs`).

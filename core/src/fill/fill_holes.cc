@@ -285,24 +285,36 @@ void FillAttempt(const MeshData& mesh, const MeshTopology& topo,
 
 // A hole: attempts, each forbidding the chords of the DOT patch faces that
 // met the mesh in the attempts before (the optimum then routes around
-// them), up to kAvoidRounds more.
+// them), up to kAvoidRounds more. `failed`, when given, receives each
+// attempt whose patch met the mesh; `own_only` avoids only the chords of
+// faces that met the patch itself (allow_input_intersections' second try).
 constexpr int kAvoidRounds = 3;
 
 void FillAvoiding(const MeshData& mesh, const MeshTopology& topo,
                   const std::vector<const HoleLoop*>& loops,
                   const FillOptions& options, const Control& control,
-                  HoleWork* w) {
+                  HoleWork* w, std::vector<HoleWork>* failed,
+                  bool own_only = false) {
   const auto first_new = static_cast<int32_t>(mesh.vertices.size());
   const HoleReport initial = w->report;
   std::vector<std::pair<int32_t, int32_t>> avoid;
   HolePatch met;
   FillAttempt(mesh, topo, loops, options, control, avoid, w, &met);
+  auto keep_failed = [&](const HoleWork& attempt) {
+    if (failed && attempt.status.ok() &&
+        attempt.report.status == HoleStatus::kFailed &&
+        attempt.report.intersecting_pairs > 0) {
+      failed->push_back(attempt);
+    }
+  };
+  keep_failed(*w);
   for (int round = 0;
        round < kAvoidRounds && w->status.ok() &&
        w->report.status == HoleStatus::kFailed && !met.faces.empty();
        ++round) {
     std::vector<std::pair<int32_t, int32_t>> chords;
-    Status s = IntersectingChords(mesh, topo, first_new, met, control, &chords);
+    Status s = IntersectingChords(mesh, topo, first_new, met, control, &chords,
+                                  own_only);
     if (!s.ok()) {
       w->status = s;
       return;
@@ -333,36 +345,32 @@ void FillAvoiding(const MeshData& mesh, const MeshTopology& topo,
       return;
     }
     if (retry.report.status != HoleStatus::kFailed) return;  // keep the first
+    keep_failed(retry);
     *w = std::move(retry);
   }
 }
 
-// FillOptions::allow_input_intersections: a hole left open because its
-// patch meets the mesh is filled when the input already intersects itself
-// near it and the patch meets neither itself nor its split faces.
-void AllowInputIntersections(const MeshData& mesh, const MeshTopology& topo,
-                             const Control& control, HoleWork* w) {
+// FillOptions::allow_input_intersections: an attempt whose patch met the
+// mesh is a fill when the input already intersects itself near it and the
+// patch meets neither itself nor its split faces; else `why_not` says why.
+bool AllowInputIntersections(const MeshData& mesh, const MeshTopology& topo,
+                             const Control& control, HoleWork* w,
+                             std::string* why_not) {
   HoleReport& r = w->report;
-  if (!w->status.ok() || r.status != HoleStatus::kFailed ||
-      r.intersecting_pairs <= 0 || w->patch.faces.empty()) {
-    return;
-  }
   int64_t own = 0, input = 0;
   const Status s = InputIntersectionsNear(
       mesh, topo, static_cast<int32_t>(mesh.vertices.size()), w->patch, control,
       &own, &input);
   if (!s.ok()) {
     w->status = s;
-    return;
+    return false;
   }
   r.input_pairs_near = input;
   if (own > 0 || input == 0) {
-    r.reason += own > 0 ? "; allow_input_intersections does not apply: the "
-                          "patch intersects itself (" +
-                              std::to_string(own) + " pairs)"
-                        : "; allow_input_intersections does not apply: the "
-                          "mesh does not intersect itself near the hole";
-    return;
+    *why_not = own > 0 ? "the patch intersects itself (" + std::to_string(own) +
+                             " pairs)"
+                       : "the mesh does not intersect itself near the hole";
+    return false;
   }
   r.status = HoleStatus::kFilled;
   r.reason = "filled although its patch meets the mesh (" +
@@ -370,15 +378,69 @@ void AllowInputIntersections(const MeshData& mesh, const MeshTopology& topo,
              " pairs of faces): the input already intersects itself there (" +
              std::to_string(input) +
              " pairs near the hole) and allow_input_intersections is on";
+  return true;
 }
 
 void FillOne(const MeshData& mesh, const MeshTopology& topo,
              const std::vector<const HoleLoop*>& loops,
              const FillOptions& options, const Control& control, HoleWork* w) {
-  FillAvoiding(mesh, topo, loops, options, control, w);
-  if (options.allow_input_intersections) {
-    AllowInputIntersections(mesh, topo, control, w);
+  const bool allow = options.allow_input_intersections;
+  std::vector<HoleWork> failed;
+  FillAvoiding(mesh, topo, loops, options, control, w, &failed);
+  if (!w->status.ok() || w->report.status != HoleStatus::kFailed ||
+      failed.empty()) {
+    return;
   }
+  if (!allow) {
+    // What the user can do: say when the opt-in would fill the hole.
+    HoleWork probe = failed.front();
+    std::string why_not;
+    if (AllowInputIntersections(mesh, topo, control, &probe, &why_not)) {
+      w->report.reason +=
+          "; the mesh already intersects itself near the "
+          "hole (" +
+          std::to_string(probe.report.input_pairs_near) +
+          " pairs): allow_input_intersections "
+          "(--allow-input-intersections) fills it anyway";
+    }
+    if (!probe.status.ok()) w->status = probe.status;
+    return;
+  }
+  // The first attempt that qualifies (a later one avoids more chords but
+  // may cross itself where an earlier one did not); when none does, the
+  // same rounds again avoiding only the chords where the patch meets
+  // itself (the mesh it may meet).
+  std::string why_not;
+  double ms = w->report.triangulate_ms;
+  for (bool own_only : {false, true}) {
+    if (own_only) {
+      HoleWork again;
+      again.report = w->report;
+      again.started = true;
+      failed.clear();
+      FillAvoiding(mesh, topo, loops, options, control, &again, &failed, true);
+      if (!again.status.ok()) {
+        w->status = again.status;
+        return;
+      }
+      ms += again.report.triangulate_ms;
+    }
+    for (HoleWork& attempt : failed) {
+      const bool filled =
+          AllowInputIntersections(mesh, topo, control, &attempt, &why_not);
+      if (!attempt.status.ok()) {
+        w->status = attempt.status;
+        return;
+      }
+      if (filled) {
+        attempt.report.triangulate_ms = ms;  // every attempt's
+        *w = std::move(attempt);
+        return;
+      }
+    }
+  }
+  w->report.triangulate_ms = ms;
+  w->report.reason += "; allow_input_intersections does not apply: " + why_not;
 }
 
 // A hole with islands is filled by one patch when one exists; when none

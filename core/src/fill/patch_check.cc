@@ -112,7 +112,8 @@ Status InputIntersectionsNear(const MeshData& mesh,
 Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control,
-                          std::vector<std::pair<int32_t, int32_t>>* chords) {
+                          std::vector<std::pair<int32_t, int32_t>>* chords,
+                          bool own_only) {
   chords->clear();
   if (!topology.face_tree) {
     return MakeStatus(StatusCode::kInternal,
@@ -121,7 +122,8 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
   RunTicker ticker(control, "the intersection check");
   const auto point = PatchPoints(mesh, first_new_id, patch);
   std::vector<Triangle> faces;  // as PatchIntersections sees them
-  PatchAndNearFaces(mesh, topology, point, patch, &faces);
+  const size_t own = PatchAndNearFaces(mesh, topology, point, patch, &faces);
+  if (own_only) faces.resize(own);
   // Each patch face with the faces whose boxes meet its own (one box
   // intersection pass), then the exact test on that small set.
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;

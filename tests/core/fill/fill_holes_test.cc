@@ -127,15 +127,13 @@ TEST(FillHolesTest, ADendriticHoleWithNoDelaunayPatchIsFilledDelaunayFirst) {
 MeshData GridHolePiercedFrom(double x_from) {
   MeshData m = testing::GridWithSquareHole(16, 6, 10);
   const auto base = static_cast<int32_t>(m.vertices.size());
-  const std::vector<Vec3> tip = {{x_from, 0.5, -0.2},
-                                 {0.6, 0.5, 0.2},
-                                 {0.6, 0.5, -0.2},
-                                 {0.6, 0.53, 0.0}};
+  const std::vector<Vec3> tip = {
+      {x_from, 0.5, -0.2}, {0.6, 0.5, 0.2}, {0.6, 0.5, -0.2}, {0.6, 0.53, 0.0}};
   m.vertices.insert(m.vertices.end(), tip.begin(), tip.end());
   Vec3 centre;
   for (const Vec3& p : tip) centre = centre + 0.25 * p;
-  for (Triangle t : std::vector<Triangle>{{0, 1, 2}, {0, 1, 3}, {1, 2, 3},
-                                          {0, 2, 3}}) {
+  for (Triangle t :
+       std::vector<Triangle>{{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}}) {
     const Vec3 n = Cross(tip[t[1]] - tip[t[0]], tip[t[2]] - tip[t[0]]);
     if (Dot(n, tip[t[0]] - centre) < 0) std::swap(t[1], t[2]);  // outward
     m.triangles.push_back({base + t[0], base + t[1], base + t[2]});
@@ -143,7 +141,8 @@ MeshData GridHolePiercedFrom(double x_from) {
   return m;
 }
 
-TEST(FillHolesTest, AllowInputIntersectionsFillsOnlyWhereTheInputCrossesItself) {
+TEST(FillHolesTest,
+     AllowInputIntersectionsFillsOnlyWhereTheInputCrossesItself) {
   FillOptions o;
   o.stage = FillStage::kTriangulate;
   o.selection.max_edges = 20;  // the square hole, not the grid's border
@@ -151,6 +150,11 @@ TEST(FillHolesTest, AllowInputIntersectionsFillsOnlyWhereTheInputCrossesItself) 
   FillResult r = FillHoles(crossing, o);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_EQ(r.report.filled, 0);  // by default, never a crossing patch
+  bool hinted = false;            // but the report says what would fill it
+  for (const HoleReport& h : r.report.holes) {
+    hinted |= h.reason.find("--allow-input-intersections") != std::string::npos;
+  }
+  EXPECT_TRUE(hinted);
   o.allow_input_intersections = true;
   r = FillHoles(crossing, o);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
