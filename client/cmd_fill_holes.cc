@@ -478,7 +478,7 @@ void FillOne(const FillFlags& f, Context* ctx,
                                       : kExitOk;
   if (f.json) {
     report(o.partial          ? kOutcomePartial
-           : r.unfilled() > 0 ? kOutcomeNoTriangulation
+           : r.unfilled() > 0 ? kOutcomeHolesOpen
                               : kOutcomeOk,
            code, stopped, true);
     return;

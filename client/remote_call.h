@@ -55,6 +55,8 @@ inline constexpr const char* kOutcomeInputError = "input_error";
 inline constexpr const char* kOutcomeOutputError = "output_error";
 inline constexpr const char* kOutcomeCallFailed = "call_failed";
 inline constexpr const char* kOutcomeWriteFailed = "write_failed";
+// fill-holes: some selected hole left open (exit 4; the report says why).
+inline constexpr const char* kOutcomeHolesOpen = "holes_open";
 // fill-holes: stopped early (time limit, drain); what it filled is written.
 inline constexpr const char* kOutcomePartial = "partial";
 

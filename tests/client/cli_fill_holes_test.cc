@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include "dot/dot.h"
 #include "fixtures/dotctl_run.h"
@@ -34,6 +35,41 @@ class FillHolesCliTest : public ::testing::Test {
   std::filesystem::path dir_;
   std::string flag_;
 };
+
+// A hole every patch of which meets a tetrahedron that crosses the mesh:
+// left open (exit 4, "holes_open", a hint), filled with the opt-in (exit 0,
+// the crossings counted), remote and local alike.
+TEST_F(FillHolesCliTest, AllowInputIntersectionsFillsAHoleOnACrossingMesh) {
+  ASSERT_TRUE(
+      WriteMeshFile(Path("pierced.off"), testing::GridHolePiercedFrom(0.1))
+          .ok());
+  const std::string args = Path("pierced.off") + " --max-hole-edges 20 -o " +
+                           Path("filled.off") + " --stage triangulate --json";
+  auto r = Dotctl("fill-holes --local " + args);
+  EXPECT_EQ(r.code, 4) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"holes_open\""), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("fills it anyway"), std::string::npos) << r.out;
+  for (const std::string& call :
+       {std::string("fill-holes --local "), flag_ + "fill-holes "}) {
+    r = Dotctl(call + args + " --allow-input-intersections");
+    EXPECT_EQ(r.code, 0) << call << r.out;
+    EXPECT_NE(r.out.find("\"outcome\":\"ok\""), std::string::npos) << r.out;
+    EXPECT_TRUE(
+        std::regex_search(r.out, std::regex("\"input_pairs_near\":\"[1-9]")))
+        << r.out;
+    EXPECT_NE(r.out.find("already intersects itself"), std::string::npos)
+        << r.out;
+  }
+  // The table says it under the summary line.
+  r = Dotctl("fill-holes --local " + Path("pierced.off") +
+             " --max-hole-edges 20 --allow-input-intersections -o " +
+             Path("filled.off"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("1 holes filled with patches that meet the mesh"),
+            std::string::npos)
+      << r.out;
+}
 
 TEST_F(FillHolesCliTest, GenerateThenFillRemoteAndLocalAlike) {
   auto r = Dotctl("generate holes " + Path("torus.off") +

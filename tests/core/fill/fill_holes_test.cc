@@ -120,33 +120,12 @@ TEST(FillHolesTest, ADendriticHoleWithNoDelaunayPatchIsFilledDelaunayFirst) {
       << r.report.holes[0].reason;
 }
 
-// A thin closed tetrahedron through the square hole of a grid, from
-// x_from to 0.6 along y = 0.5: every patch of the hole meets it. From
-// x_from < 0.375 on it also crosses the grid itself (the input then
-// intersects itself near the hole).
-MeshData GridHolePiercedFrom(double x_from) {
-  MeshData m = testing::GridWithSquareHole(16, 6, 10);
-  const auto base = static_cast<int32_t>(m.vertices.size());
-  const std::vector<Vec3> tip = {
-      {x_from, 0.5, -0.2}, {0.6, 0.5, 0.2}, {0.6, 0.5, -0.2}, {0.6, 0.53, 0.0}};
-  m.vertices.insert(m.vertices.end(), tip.begin(), tip.end());
-  Vec3 centre;
-  for (const Vec3& p : tip) centre = centre + 0.25 * p;
-  for (Triangle t :
-       std::vector<Triangle>{{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}}) {
-    const Vec3 n = Cross(tip[t[1]] - tip[t[0]], tip[t[2]] - tip[t[0]]);
-    if (Dot(n, tip[t[0]] - centre) < 0) std::swap(t[1], t[2]);  // outward
-    m.triangles.push_back({base + t[0], base + t[1], base + t[2]});
-  }
-  return m;
-}
-
 TEST(FillHolesTest,
      AllowInputIntersectionsFillsOnlyWhereTheInputCrossesItself) {
   FillOptions o;
   o.stage = FillStage::kTriangulate;
   o.selection.max_edges = 20;  // the square hole, not the grid's border
-  const MeshData crossing = GridHolePiercedFrom(0.1);
+  const MeshData crossing = testing::GridHolePiercedFrom(0.1);
   FillResult r = FillHoles(crossing, o);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_EQ(r.report.filled, 0);  // by default, never a crossing patch
@@ -177,7 +156,7 @@ TEST(FillHolesTest,
             hole->intersecting_pairs + 1);  // + the input's own
 
   // Where the input is clean near the hole, the opt-in does not apply.
-  r = FillHoles(GridHolePiercedFrom(0.45), o);
+  r = FillHoles(testing::GridHolePiercedFrom(0.45), o);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   EXPECT_EQ(r.report.filled, 0);
   bool said = false;
