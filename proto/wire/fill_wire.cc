@@ -135,6 +135,7 @@ void FillReportToWire(const FillReport& r, const RepairReport& repair,
     w->set_cost(h.cost);
     w->set_intersecting_pairs(h.intersecting_pairs);
     w->set_input_pairs_near(h.input_pairs_near);
+    w->set_non_delaunay_triangles(h.non_delaunay_triangles);
     w->set_triangulate_ms(h.triangulate_ms);
     w->set_refine_ms(h.refine_ms);
     w->set_fair_ms(h.fair_ms);

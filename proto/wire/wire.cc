@@ -209,6 +209,7 @@ void FillSummary(const Result& r, v1::Summary* s) {
   st->set_adjacency_ms(r.stats.adjacency_ms);
   st->set_dp_ms(r.stats.dp_ms);
   st->set_tiling_ms(r.stats.tiling_ms);
+  st->set_non_delaunay_triangles(r.stats.non_delaunay_triangles);
   st->set_total_ms(r.stats.total_ms);
 }
 

@@ -36,6 +36,8 @@ SEARCH_SPACES = [
      "that have no Delaunay triangulation"),
     ('DELAUNAY', "Delaunay", "Delaunay triangles only: never self-intersects"),
     ('ALL', "All", "Every triangle: the unrestricted optimum (small loops)"),
+    ('DELAUNAY_FIRST', "Delaunay First", "Every triangle, Delaunay ones "
+     "first: large loops with no Delaunay triangulation (may self-intersect)"),
 ]
 
 

@@ -264,7 +264,9 @@ class Client:
 
         ``search_space``: ``"auto"`` (Delaunay triangles, all triangles for
         small polygons without a Delaunay triangulation), ``"delaunay"``
-        (never self-intersects) or ``"all"``. ``protect_edges`` splits
+        (never self-intersects), ``"all"`` or ``"delaunay_first"`` (every
+        triangle, Delaunay ones first, for large polygons with no Delaunay
+        triangulation; may self-intersect). ``protect_edges`` splits
         polygon edges that are not Delaunay (the inserted vertices follow
         the input's in ``result.vertices``; ``summary.loop`` is the polygon
         with them in place). ``delaunay_backend``: ``"default"``,

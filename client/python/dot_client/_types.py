@@ -110,6 +110,7 @@ class Stats(_Plain):
     dp_ms: float = 0.0
     tiling_ms: float = 0.0
     total_ms: float = 0.0
+    non_delaunay_triangles: int = 0
 
     @classmethod
     def from_proto(cls, m: Any) -> "Stats":
@@ -273,6 +274,7 @@ class HoleReport(_Plain):
     joined: List[int] = field(default_factory=list)
     joined_to: Optional[int] = None
     input_pairs_near: int = 0
+    non_delaunay_triangles: int = 0
 
     @classmethod
     def from_proto(cls, m: Any) -> "HoleReport":
@@ -635,8 +637,10 @@ class TriangulateOptions(_Options):
     :data:`WEIGHT_PRESETS` or a dict of metric weights is taken too).
     Default all zero: area alone. ``search_space``: ``"auto"`` (Delaunay
     triangles; all triangles for small polygons without a Delaunay
-    triangulation; default), ``"delaunay"`` (never self-intersects) or
-    ``"all"``. ``protect_edges``: split polygon edges that are not
+    triangulation; default), ``"delaunay"`` (never self-intersects),
+    ``"all"`` or ``"delaunay_first"`` (every triangle, Delaunay ones first:
+    large polygons with no Delaunay triangulation; may self-intersect, the
+    summary counts the pairs). ``protect_edges``: split polygon edges that are not
     Delaunay (default False). ``delaunay_backend``: ``"default"`` (the
     server's), ``"cgal"`` or ``"tetgen"``. ``validate_output``: count
     self-intersecting pairs (default False). ``time_budget_ms``,

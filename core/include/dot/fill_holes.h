@@ -10,7 +10,9 @@
 //   GroupHoleLoops    which loops one patch joins (a hole's rim and the
 //                     rims of its islands);
 //   TriangulateHole   one hole's loops -> a patch (DOT, escalating to edge
-//                     protection, then to all triangles for small holes);
+//                     protection, then to all triangles for small holes or
+//                     every triangle with the Delaunay ones first for
+//                     large single-loop ones);
 //   RefineAndFairPatch  Liepa refinement and fairing of one patch (CGAL);
 //   FillHoles         all of the above over a whole mesh, holes in parallel;
 //   FillSoup          repair a polygon soup, then FillHoles (dot/fill_soup.h:
@@ -130,7 +132,10 @@ std::string_view FillStageName(FillStage s);  // "triangulate", ...
 //                   space kDelaunay (the escalation below replaces kAuto).
 //  all_space_max_vertices  last resort for holes of at most this many
 //                   vertices: the optimum over all triangles, accepted only
-//                   when it intersects nothing. Default 40.
+//                   when it intersects nothing. Default 40. Larger holes of
+//                   one loop, up to triangulate.delaunay_first_max_vertices
+//                   (2,000), end with SearchSpace::kDelaunayFirst instead,
+//                   accepted the same way.
 //  stage            kTriangulate, kRefine (Liepa refinement) or kFair
 //                   (refinement and fairing). Default kFair.
 //  density          Liepa's density control factor: refinement stops when
@@ -343,14 +348,20 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                           const Control& control,
                           std::vector<std::pair<int32_t, int32_t>>* chords,
                           bool own_only = false);
-// For FillOptions::allow_input_intersections: the pairs the patch makes
-// with itself and its split faces' pieces (`own_pairs`), and the pairs the
-// input already has among the mesh faces near the patch (`input_pairs`).
-Status InputIntersectionsNear(const MeshData& mesh,
-                              const MeshTopology& topology,
-                              int32_t first_new_id, const HolePatch& patch,
-                              const Control& control, int64_t* own_pairs,
-                              int64_t* input_pairs);
+// For FillOptions::allow_input_intersections, the crossings of a patch and
+// of the mesh faces near it (those whose boxes meet the patch's): the
+// patch's with itself and its split faces' pieces (`own_pairs`, never
+// allowed), the input's own among those faces (`input_pairs`), the patch's
+// with the mesh (`patch_pairs`), and of those the pairs whose mesh face
+// lies more than kCrossingRings rings of faces from every face of an input
+// pair (`away_pairs`: the patch would cross the mesh where it is sound).
+inline constexpr int kCrossingRings = 3;
+struct InputCrossings {
+  int64_t own_pairs = 0, input_pairs = 0, patch_pairs = 0, away_pairs = 0;
+};
+Status InputCrossingsNear(const MeshData& mesh, const MeshTopology& topology,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control, InputCrossings* out);
 
 // INVALID_ARGUMENT naming the first field out of its range (weights not
 // finite or all zero, density outside [0.1, 100], fairing_continuity

@@ -67,6 +67,12 @@ Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
                               const std::vector<Triangle>& triangles,
                               size_t checked, const Control& control,
                               int64_t* pairs);
+// The pairs themselves (triangle indices, the smaller first), in no
+// particular order.
+Status ListIntersectingPairs(const std::vector<Vec3>& vertices,
+                             const std::vector<Triangle>& triangles,
+                             size_t checked, const Control& control,
+                             std::vector<std::pair<int32_t, int32_t>>* pairs);
 
 }  // namespace dot
 

@@ -351,33 +351,49 @@ void FillAvoiding(const MeshData& mesh, const MeshTopology& topo,
 }
 
 // FillOptions::allow_input_intersections: an attempt whose patch met the
-// mesh is a fill when the input already intersects itself near it and the
-// patch meets neither itself nor its split faces; else `why_not` says why.
+// mesh is a fill when the input already intersects itself near it, every
+// mesh face the patch crosses is within kCrossingRings rings of faces of
+// those crossings, and the patch meets neither itself nor its split faces;
+// else `why_not` says why. The check's time counts in check_ms.
 bool AllowInputIntersections(const MeshData& mesh, const MeshTopology& topo,
                              const Control& control, HoleWork* w,
                              std::string* why_not) {
   HoleReport& r = w->report;
-  int64_t own = 0, input = 0;
-  const Status s = InputIntersectionsNear(
-      mesh, topo, static_cast<int32_t>(mesh.vertices.size()), w->patch, control,
-      &own, &input);
+  InputCrossings c;
+  const auto t0 = Clock::now();
+  const Status s =
+      InputCrossingsNear(mesh, topo, static_cast<int32_t>(mesh.vertices.size()),
+                         w->patch, control, &c);
+  r.check_ms += MsSince(t0);
   if (!s.ok()) {
     w->status = s;
     return false;
   }
-  r.input_pairs_near = input;
-  if (own > 0 || input == 0) {
-    *why_not = own > 0 ? "the patch intersects itself (" + std::to_string(own) +
-                             " pairs)"
-                       : "the mesh does not intersect itself near the hole";
+  r.input_pairs_near = c.input_pairs;
+  if (c.own_pairs > 0) {
+    *why_not = "the patch intersects itself (" + std::to_string(c.own_pairs) +
+               " pairs)";
+    return false;
+  }
+  if (c.input_pairs == 0) {
+    *why_not = "the mesh does not intersect itself near the hole";
+    return false;
+  }
+  if (c.away_pairs > 0) {
+    *why_not = "the patch would cross the mesh where it is sound (" +
+               std::to_string(c.away_pairs) + " of " +
+               std::to_string(c.patch_pairs) + " pairs more than " +
+               std::to_string(kCrossingRings) +
+               " rings of faces from the input's own crossings)";
     return false;
   }
   r.status = HoleStatus::kFilled;
   r.reason = "filled although its patch meets the mesh (" +
-             std::to_string(r.intersecting_pairs) +
-             " pairs of faces): the input already intersects itself there (" +
-             std::to_string(input) +
-             " pairs near the hole) and allow_input_intersections is on";
+             std::to_string(c.patch_pairs) + " pairs of faces, each within " +
+             std::to_string(kCrossingRings) +
+             " rings of faces of where the input already intersects itself: " +
+             std::to_string(c.input_pairs) +
+             " pairs near the hole); allow_input_intersections is on";
   return true;
 }
 
@@ -385,6 +401,7 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
              const std::vector<const HoleLoop*>& loops,
              const FillOptions& options, const Control& control, HoleWork* w) {
   const bool allow = options.allow_input_intersections;
+  const HoleReport initial = w->report;
   std::vector<HoleWork> failed;
   FillAvoiding(mesh, topo, loops, options, control, w, &failed);
   if (!w->status.ok() || w->report.status != HoleStatus::kFailed ||
@@ -392,54 +409,68 @@ void FillOne(const MeshData& mesh, const MeshTopology& topo,
     return;
   }
   if (!allow) {
-    // What the user can do: say when the opt-in would fill the hole.
+    // What the user can do: say when the opt-in would fill the hole (a
+    // stop here only leaves the hint out: the hole is done).
     HoleWork probe = failed.front();
     std::string why_not;
-    if (AllowInputIntersections(mesh, topo, control, &probe, &why_not)) {
+    const bool would =
+        AllowInputIntersections(mesh, topo, control, &probe, &why_not);
+    w->report.check_ms +=
+        probe.report.check_ms - failed.front().report.check_ms;
+    if (would) {
       w->report.reason +=
-          "; the mesh already intersects itself near the "
-          "hole (" +
+          "; the mesh already intersects itself near the hole (" +
           std::to_string(probe.report.input_pairs_near) +
-          " pairs): allow_input_intersections "
-          "(--allow-input-intersections) fills it anyway";
+          " pairs): allow_input_intersections (--allow-input-intersections) "
+          "fills it anyway";
     }
-    if (!probe.status.ok()) w->status = probe.status;
     return;
   }
   // The first attempt that qualifies (a later one avoids more chords but
   // may cross itself where an earlier one did not); when none does, the
   // same rounds again avoiding only the chords where the patch meets
-  // itself (the mesh it may meet).
+  // itself (the mesh it may meet), which may also find a clean patch.
   std::string why_not;
-  double ms = w->report.triangulate_ms;
+  double ms = w->report.triangulate_ms, check_ms = w->report.check_ms;
   for (bool own_only : {false, true}) {
     if (own_only) {
       HoleWork again;
-      again.report = w->report;
+      again.report = initial;
       again.started = true;
       failed.clear();
       FillAvoiding(mesh, topo, loops, options, control, &again, &failed, true);
+      ms += again.report.triangulate_ms;
+      check_ms += again.report.check_ms;
       if (!again.status.ok()) {
         w->status = again.status;
         return;
       }
-      ms += again.report.triangulate_ms;
+      if (again.report.status == HoleStatus::kFilled) {
+        again.report.triangulate_ms = ms;
+        again.report.check_ms = check_ms;
+        *w = std::move(again);
+        return;
+      }
     }
     for (HoleWork& attempt : failed) {
+      const double before = attempt.report.check_ms;
       const bool filled =
           AllowInputIntersections(mesh, topo, control, &attempt, &why_not);
+      check_ms += attempt.report.check_ms - before;
       if (!attempt.status.ok()) {
         w->status = attempt.status;
         return;
       }
       if (filled) {
         attempt.report.triangulate_ms = ms;  // every attempt's
+        attempt.report.check_ms = check_ms;
         *w = std::move(attempt);
         return;
       }
     }
   }
   w->report.triangulate_ms = ms;
+  w->report.check_ms = check_ms;
   w->report.reason += "; allow_input_intersections does not apply: " + why_not;
 }
 

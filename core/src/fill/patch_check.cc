@@ -18,18 +18,29 @@
 
 namespace dot {
 
-Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
-                       std::vector<Triangle> faces, size_t checked,
-                       const Control& control, int64_t* pairs) {
+namespace {
+
+// The positions `faces` use, and `faces` renumbered over them.
+std::vector<Vec3> LocalPoints(const std::function<const Vec3&(int32_t)>& point,
+                              std::vector<Triangle>* faces) {
   std::unordered_map<int32_t, int32_t> local;
   std::vector<Vec3> points;
-  for (Triangle& t : faces) {
+  for (Triangle& t : *faces) {
     for (int32_t& v : t) {
       auto [it, added] = local.emplace(v, static_cast<int32_t>(points.size()));
       if (added) points.push_back(point(v));
       v = it->second;
     }
   }
+  return points;
+}
+
+}  // namespace
+
+Status CountPairsAmong(const std::function<const Vec3&(int32_t)>& point,
+                       std::vector<Triangle> faces, size_t checked,
+                       const Control& control, int64_t* pairs) {
+  const std::vector<Vec3> points = LocalPoints(point, &faces);
   return CountIntersectingPairs(points, faces, checked, control, pairs);
 }
 
@@ -50,7 +61,8 @@ std::function<const Vec3&(int32_t)> PatchPoints(const MeshData& mesh,
 // faces the first two make.
 size_t PatchAndNearFaces(const MeshData& mesh, const MeshTopology& topology,
                          const std::function<const Vec3&(int32_t)>& point,
-                         const HolePatch& patch, std::vector<Triangle>* faces) {
+                         const HolePatch& patch, std::vector<Triangle>* faces,
+                         std::vector<int32_t>* mesh_ids = nullptr) {
   *faces = patch.faces;
   for (const auto& pieces : patch.pieces) {
     faces->insert(faces->end(), pieces.begin(), pieces.end());
@@ -65,7 +77,9 @@ size_t PatchAndNearFaces(const MeshData& mesh, const MeshTopology& topology,
   const std::unordered_set<int32_t> split(patch.split_faces.begin(),
                                           patch.split_faces.end());
   for (int32_t f : near) {
-    if (!split.count(f)) faces->push_back(mesh.triangles[f]);
+    if (split.count(f)) continue;
+    faces->push_back(mesh.triangles[f]);
+    if (mesh_ids) mesh_ids->push_back(f);
   }
   return own;
 }
@@ -86,27 +100,61 @@ Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                          pairs);
 }
 
-Status InputIntersectionsNear(const MeshData& mesh,
-                              const MeshTopology& topology,
-                              int32_t first_new_id, const HolePatch& patch,
-                              const Control& control, int64_t* own_pairs,
-                              int64_t* input_pairs) {
-  *own_pairs = *input_pairs = 0;
+Status InputCrossingsNear(const MeshData& mesh, const MeshTopology& topology,
+                          int32_t first_new_id, const HolePatch& patch,
+                          const Control& control, InputCrossings* out) {
+  *out = {};
   if (!topology.face_tree) {
     return MakeStatus(StatusCode::kInternal,
-                      "InputIntersectionsNear needs BuildMeshTopology's face "
-                      "tree");
+                      "InputCrossingsNear needs BuildMeshTopology's face tree");
   }
   const auto point = PatchPoints(mesh, first_new_id, patch);
   std::vector<Triangle> faces;
-  const size_t own = PatchAndNearFaces(mesh, topology, point, patch, &faces);
-  Status s = CountPairsAmong(
-      point, std::vector<Triangle>(faces.begin(), faces.begin() + own),
-      patch.faces.size(), control, own_pairs);
+  std::vector<int32_t> ids;  // mesh face of faces[own + k]
+  const size_t own =
+      PatchAndNearFaces(mesh, topology, point, patch, &faces, &ids);
+  const std::vector<Vec3> points = LocalPoints(point, &faces);
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  Status s =
+      ListIntersectingPairs(points, faces, faces.size(), control, &pairs);
   if (!s.ok()) return s;
-  return CountPairsAmong(
-      point, std::vector<Triangle>(faces.begin() + own, faces.end()),
-      faces.size() - own, control, input_pairs);
+  // Mesh faces the input's own crossings touch, grown by rings of faces
+  // around their vertices; and the mesh faces the patch crosses.
+  std::unordered_set<int32_t> near_crossing, crossed;
+  for (auto [a, b] : pairs) {  // a < b: the patch's faces come first
+    if (static_cast<size_t>(b) < own) {
+      ++out->own_pairs;
+    } else if (static_cast<size_t>(a) < own) {
+      ++out->patch_pairs;
+      crossed.insert(ids[b - own]);
+    } else {
+      ++out->input_pairs;
+      near_crossing.insert(ids[a - own]);
+      near_crossing.insert(ids[b - own]);
+    }
+  }
+  std::vector<int32_t> frontier(near_crossing.begin(), near_crossing.end());
+  for (int ring = 0; ring < kCrossingRings && !frontier.empty(); ++ring) {
+    std::vector<int32_t> next;
+    for (int32_t f : frontier) {
+      for (int32_t v : mesh.triangles[f]) {
+        for (int32_t k = topology.face_begin[v]; k < topology.face_begin[v + 1];
+             ++k) {
+          if (near_crossing.insert(topology.faces[k]).second) {
+            next.push_back(topology.faces[k]);
+          }
+        }
+      }
+    }
+    frontier = std::move(next);
+  }
+  for (auto [a, b] : pairs) {
+    if (static_cast<size_t>(a) < own && static_cast<size_t>(b) >= own &&
+        !near_crossing.count(ids[b - own])) {
+      ++out->away_pairs;
+    }
+  }
+  return OkStatus();
 }
 
 Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,

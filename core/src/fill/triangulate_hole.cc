@@ -241,7 +241,14 @@ Status TriangulateHole(const MeshData& mesh, const MeshTopology& topology,
         r.status.code == StatusCode::kNoTriangulation ||
         (a.protect_edges && (r.status.code == StatusCode::kResourceExhausted ||
                              r.status.code == StatusCode::kInvalidArgument));
-    if (!next_may_help) return r.status;
+    // The last step's own refusal (its memory budget) still leaves the
+    // hole without a patch, with what every step said.
+    const bool stopped = r.status.code == StatusCode::kCancelled ||
+                         r.status.code == StatusCode::kDeadlineExceeded;
+    if (stopped ||
+        (!next_may_help && a.escalation != Escalation::kDelaunayFirst)) {
+      return r.status;
+    }
     why += std::string(why.empty() ? "" : "; ") +
            std::string(EscalationName(a.escalation)) + ": " + r.status.message;
   }

@@ -203,10 +203,14 @@ int64_t CountIntersectingPairs(const std::vector<Vec3>& vertices,
   return pairs;
 }
 
-Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
+namespace {
+
+// Calls found(a, b) for each intersecting pair (a < b), polling `control`.
+template <typename Found>
+Status VisitIntersectingPairs(const std::vector<Vec3>& vertices,
                               const std::vector<Triangle>& triangles,
                               size_t checked, const Control& control,
-                              int64_t* pairs) {
+                              Found found) {
   RunTicker ticker(control, "the intersection check");
   std::vector<P3> p;
   p.reserve(vertices.size());
@@ -221,7 +225,6 @@ Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
   }
   // CGAL's box intersection has no way to stop but an exception.
   struct Stop {};
-  int64_t count = 0;
   try {
     CGAL::box_self_intersection_d(
         boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
@@ -230,13 +233,39 @@ Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
               static_cast<size_t>(y.info()) >= checked) {
             return;
           }
-          if (Overlaps(p, triangles[x.info()], triangles[y.info()])) ++count;
+          if (Overlaps(p, triangles[x.info()], triangles[y.info()])) {
+            found(std::min(x.info(), y.info()), std::max(x.info(), y.info()));
+          }
         });
   } catch (const Stop&) {
     return ticker.status();
   }
-  *pairs = count;
   return OkStatus();
+}
+
+}  // namespace
+
+Status CountIntersectingPairs(const std::vector<Vec3>& vertices,
+                              const std::vector<Triangle>& triangles,
+                              size_t checked, const Control& control,
+                              int64_t* pairs) {
+  int64_t count = 0;
+  Status s = VisitIntersectingPairs(vertices, triangles, checked, control,
+                                    [&](int32_t, int32_t) { ++count; });
+  if (s.ok()) *pairs = count;
+  return s;
+}
+
+Status ListIntersectingPairs(const std::vector<Vec3>& vertices,
+                             const std::vector<Triangle>& triangles,
+                             size_t checked, const Control& control,
+                             std::vector<std::pair<int32_t, int32_t>>* pairs) {
+  pairs->clear();
+  Status s = VisitIntersectingPairs(
+      vertices, triangles, checked, control,
+      [&](int32_t a, int32_t b) { pairs->emplace_back(a, b); });
+  if (!s.ok()) pairs->clear();
+  return s;
 }
 
 MeshReport ValidateMesh(const std::vector<Vec3>& vertices,

@@ -43,12 +43,12 @@ double TriangleCost(const IntervalDpInput& in, int32_t a, int32_t b, int32_t c,
 
 }  // namespace
 
-int64_t IntervalDpBytes(int64_t n) {
-  // Per (i, k): count, cost, apex, the apex triangle's normal, forbidden
-  // flag and preferred-apex offset; plus the preferred apexes.
+int64_t IntervalDpBytes(int64_t n, bool bending) {
+  // Per (i, k): count, cost, apex, preferred-apex offset, forbidden flag,
+  // and with bending the apex triangle's normal.
   return n * n *
-         static_cast<int64_t>(sizeof(int32_t) * 3 + sizeof(double) +
-                              sizeof(Vec3) + 1);
+         static_cast<int64_t>(sizeof(int32_t) * 3 + sizeof(double) + 1 +
+                              (bending ? sizeof(Vec3) : 0));
 }
 
 Status SolveIntervalDp(const IntervalDpInput& in, const Control& control,
@@ -105,7 +105,7 @@ Status SolveIntervalDp(const IntervalDpInput& in, const Control& control,
   std::vector<double> cost(cells, kInf);
   std::vector<Vec3> normal(bends ? cells : 0);
   std::vector<uint8_t> is_preferred(n, 0);
-  out->table_bytes = IntervalDpBytes(n);
+  out->table_bytes = IntervalDpBytes(n, bends);
 
   RunTicker ticker(control, Stage::kDynamicProgram);
   for (int32_t i = 0; i + 1 < n; ++i)

@@ -46,9 +46,9 @@ struct IntervalDpSolution {
   int64_t table_bytes = 0;
 };
 
-// Bytes the tables take for a loop of n vertices (checked against a budget
-// before allocating).
-int64_t IntervalDpBytes(int64_t n);
+// Bytes the tables take for a loop of n vertices, with or without bending
+// weights (checked against a budget before allocating).
+int64_t IntervalDpBytes(int64_t n, bool bending);
 
 // kNoTriangulation when every triangulation uses a forbidden chord or a
 // degenerate triangle; kCancelled / kDeadlineExceeded per `control`.

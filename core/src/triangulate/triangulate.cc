@@ -229,7 +229,7 @@ Status SolveDelaunayFirst(const PlaneFit& fit, bool planar,
                           std::to_string(options.delaunay_first_max_vertices) +
                           " vertices; the polygon has " + std::to_string(n));
   }
-  st.estimated_bytes = IntervalDpBytes(n);
+  st.estimated_bytes = IntervalDpBytes(n, HasBiTriangleWeight(weights));
   if (st.estimated_bytes > options.memory_budget_bytes) {
     return MakeStatus(
         StatusCode::kResourceExhausted,
@@ -240,14 +240,21 @@ Status SolveDelaunayFirst(const PlaneFit& fit, bool planar,
   }
   // The preferred triangles: the Delaunay faces, without edge protection
   // (the loop keeps its vertices).
-  Options plain = options;
-  plain.protect_edges = false;
-  PreparedSpace delaunay;
-  delaunay.loop = loop;
-  Status s = PrepareDelaunay(fit, planar, false, false, {}, plain, control,
-                             &delaunay, &st);
-  if (!s.ok() && s.code != StatusCode::kNoTriangulation) return s;
+  Report(control, Stage::kDelaunay, 0);
+  auto t_delaunay = Clock::now();
   IntervalDpInput in;
+  Status s;
+  if (planar) {
+    s = PlanarCdtTriangles(loop.Points(), loop.Successors(), fit.dominant_axis,
+                           &in.preferred);
+  } else {
+    Options plain = options;
+    plain.protect_edges = false;
+    PolygonLoop copy = loop;
+    s = Delaunay3dFaces(plain, control, &copy, &in.preferred, &st);
+  }
+  st.delaunay_ms = MsSince(t_delaunay);
+  if (!s.ok()) return s;
   in.points = loop.Points();
   if (weights[Metric::kNormalDeviation] != 0) {
     for (int32_t id : loop.ids)
@@ -255,7 +262,6 @@ Status SolveDelaunayFirst(const PlaneFit& fit, bool planar,
   }
   in.edge_normals = loop.EdgeNormalsByPosition();
   in.weights = weights;
-  in.preferred = std::move(delaunay.triangles);
   in.forbidden = problem.forbidden_edges;
   Report(control, Stage::kDynamicProgram, 0);
   const auto t0 = Clock::now();

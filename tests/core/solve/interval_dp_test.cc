@@ -212,7 +212,19 @@ TEST(IntervalDpTest, TriangulateDelaunayFirstValidatesItsAnswer) {
   EXPECT_EQ(r.intersecting_pairs,
             CountIntersectingPairs(r.vertices, r.triangles));
   EXPECT_TRUE(ValidateMesh(r.vertices, r.polygon, r.triangles, false).valid());
-  EXPECT_LE(r.stats.non_delaunay_triangles, n - 2);
+  // The band has no triangulation over its Delaunay triangles alone.
+  Options delaunay;
+  delaunay.space = SearchSpace::kDelaunay;
+  EXPECT_EQ(Triangulate(p, delaunay).status.code,
+            StatusCode::kNoTriangulation);
+  EXPECT_GT(r.stats.non_delaunay_triangles, 0);
+  EXPECT_LT(r.stats.non_delaunay_triangles, n - 2);
+  Options small = o;
+  small.memory_budget_bytes = 1000;
+  const Result refused_memory = Triangulate(p, small);
+  EXPECT_EQ(refused_memory.status.code, StatusCode::kResourceExhausted);
+  EXPECT_NE(refused_memory.status.message.find("exceeds the budget"),
+            std::string::npos);
 
   // The Delaunay space, where it has an answer, is what it keeps.
   Problem ring;
