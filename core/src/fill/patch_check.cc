@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -84,15 +85,20 @@ size_t PatchAndNearFaces(const MeshData& mesh, const MeshTopology& topology,
   return own;
 }
 
+// The per-patch checks query the face tree, which BuildMeshAdjacency omits.
+Status NeedFaceTree(const MeshTopology& topology, const char* who) {
+  if (topology.face_tree) return OkStatus();
+  return MakeStatus(StatusCode::kInternal,
+                    std::string(who) + " needs BuildMeshTopology's face tree");
+}
+
 }  // namespace
 
 Status PatchIntersections(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, int64_t* pairs) {
-  if (!topology.face_tree) {
-    return MakeStatus(StatusCode::kInternal,
-                      "PatchIntersections needs BuildMeshTopology's face tree");
-  }
+  if (Status s = NeedFaceTree(topology, "PatchIntersections"); !s.ok())
+    return s;
   const auto point = PatchPoints(mesh, first_new_id, patch);
   std::vector<Triangle> faces;
   PatchAndNearFaces(mesh, topology, point, patch, &faces);
@@ -104,10 +110,8 @@ Status InputCrossingsNear(const MeshData& mesh, const MeshTopology& topology,
                           int32_t first_new_id, const HolePatch& patch,
                           const Control& control, InputCrossings* out) {
   *out = {};
-  if (!topology.face_tree) {
-    return MakeStatus(StatusCode::kInternal,
-                      "InputCrossingsNear needs BuildMeshTopology's face tree");
-  }
+  if (Status s = NeedFaceTree(topology, "InputCrossingsNear"); !s.ok())
+    return s;
   const auto point = PatchPoints(mesh, first_new_id, patch);
   std::vector<Triangle> faces;
   std::vector<int32_t> ids;  // mesh face of faces[own + k]
@@ -163,10 +167,8 @@ Status IntersectingChords(const MeshData& mesh, const MeshTopology& topology,
                           std::vector<std::pair<int32_t, int32_t>>* chords,
                           bool own_only) {
   chords->clear();
-  if (!topology.face_tree) {
-    return MakeStatus(StatusCode::kInternal,
-                      "IntersectingChords needs BuildMeshTopology's face tree");
-  }
+  if (Status s = NeedFaceTree(topology, "IntersectingChords"); !s.ok())
+    return s;
   RunTicker ticker(control, "the intersection check");
   const auto point = PatchPoints(mesh, first_new_id, patch);
   std::vector<Triangle> faces;  // as PatchIntersections sees them

@@ -215,8 +215,7 @@ TEST(IntervalDpTest, TriangulateDelaunayFirstValidatesItsAnswer) {
   // The band has no triangulation over its Delaunay triangles alone.
   Options delaunay;
   delaunay.space = SearchSpace::kDelaunay;
-  EXPECT_EQ(Triangulate(p, delaunay).status.code,
-            StatusCode::kNoTriangulation);
+  EXPECT_EQ(Triangulate(p, delaunay).status.code, StatusCode::kNoTriangulation);
   EXPECT_GT(r.stats.non_delaunay_triangles, 0);
   EXPECT_LT(r.stats.non_delaunay_triangles, n - 2);
   Options small = o;
