@@ -26,7 +26,8 @@ LAYERS = [
     ("triangulate", ["triangulate"], ["triangulate.h"]),
     ("mesh_io", ["mesh_io"], ["io.h", "mesh_repair.h"]),
     ("fill", ["fill"], ["fill_holes.h", "fill_soup.h"]),
-    ("samples", ["samples"], ["curves.h", "hole_generator.h"]),
+    ("network", ["network"], ["network.h"]),
+    ("samples", ["samples"], ["curves.h", "hole_generator.h", "network_samples.h"]),
     ("helpers", ["helpers"], ["delaunay_helpers.h"]),
     ("umbrella", [], ["dot.h"]),
 ]

@@ -5,7 +5,8 @@
 set(DOT_MESH_DIR ${PROJECT_BINARY_DIR}/data/meshes)
 set(CGAL_DATA_TARBALL /usr/share/doc/libcgal-dev/data.tar.gz)
 set(DOT_MESHES elephant.off armadillo.off refined_elephant.off bunny00.off
-    elephant-with-holes.off holes.off lion.off mech-holes-shark.off head.off)
+    elephant-with-holes.off holes.off lion.off mech-holes-shark.off head.off
+    homer.off)
 list(TRANSFORM DOT_MESHES PREPEND ${DOT_MESH_DIR}/ OUTPUT_VARIABLE DOT_MESH_FILES)
 list(TRANSFORM DOT_MESHES PREPEND data/meshes/ OUTPUT_VARIABLE DOT_MESH_MEMBERS)
 if(EXISTS ${CGAL_DATA_TARBALL})

@@ -74,6 +74,13 @@ Status ListIntersectingPairs(const std::vector<Vec3>& vertices,
                              size_t checked, const Control& control,
                              std::vector<std::pair<int32_t, int32_t>>* pairs);
 
+// The symmetric Hausdorff distance between two triangle meshes, to within
+// `error_bound` (CGAL's bounded-error algorithm, Polygon Mesh Processing):
+// how far a surface strays from a reference. kInvalidArgument when either
+// mesh has no face or is not an oriented 2-manifold with boundary.
+Status HausdorffDistance(const MeshData& a, const MeshData& b,
+                         double error_bound, double* distance);
+
 }  // namespace dot
 
 #endif  // DOT_VALIDATE_H_

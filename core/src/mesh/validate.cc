@@ -7,6 +7,8 @@
 #include "dot/validate.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
@@ -332,6 +334,46 @@ MeshShape ShapeOf(const MeshData& mesh) {
   shape.euler = vertices - static_cast<int64_t>(edges.size()) +
                 static_cast<int64_t>(mesh.triangles.size());
   return shape;
+}
+
+namespace {
+
+using HausdorffMesh = CGAL::Surface_mesh<
+    CGAL::Exact_predicates_inexact_constructions_kernel::Point_3>;
+
+Status ToSurfaceMesh(const MeshData& m, const char* which, HausdorffMesh* sm) {
+  if (m.triangles.empty()) {
+    return InvalidArgument(std::string(which) + " mesh has no faces");
+  }
+  for (const Vec3& p : m.vertices) sm->add_vertex({p.x, p.y, p.z});
+  for (const Triangle& t : m.triangles) {
+    for (int32_t v : t) {
+      if (v < 0 || static_cast<size_t>(v) >= m.vertices.size()) {
+        return InvalidArgument(std::string(which) +
+                               " mesh has a face index out of range");
+      }
+    }
+    using V = HausdorffMesh::Vertex_index;
+    if (sm->add_face(V(t[0]), V(t[1]), V(t[2])) == HausdorffMesh::null_face()) {
+      return InvalidArgument(std::string(which) +
+                             " mesh is not an oriented 2-manifold");
+    }
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+Status HausdorffDistance(const MeshData& a, const MeshData& b,
+                         double error_bound, double* distance) {
+  HausdorffMesh sa, sb;
+  Status s = ToSurfaceMesh(a, "the first", &sa);
+  if (s.ok()) s = ToSurfaceMesh(b, "the second", &sb);
+  if (!s.ok()) return s;
+  *distance =
+      CGAL::Polygon_mesh_processing::bounded_error_symmetric_Hausdorff_distance<
+          CGAL::Sequential_tag>(sa, sb, error_bound);
+  return OkStatus();
 }
 
 }  // namespace dot

@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Curve networks into surfaces (the paper's Figure 10): a network of 3D
+// curves is split into the cycles that bound patches, each patch is
+// triangulated by DOT (squared dihedral angles, with boundary normals the
+// two patches on each curve share), refined (Liepa) and the whole network
+// is faired at once with every curve vertex fixed.
+//
+// A staircase of entry points, each usable alone:
+//   ReadNetworkFile    OBJ 'v'/'l' lines or text blocks -> CurveNetwork;
+//   BuildNetworkGraph  welds equal points, splits polylines into curves
+//                      between junctions, refuses duplicate and crossing
+//                      curves, sets dangling curves apart;
+//   FindNetworkCycles  the cycles that bound patches, from a rotation
+//                      system at the junctions (any genus, no planarity
+//                      assumption; manifold networks), or
+//   CyclesFromVertices the cycles a user gives as vertex lists;
+//   SurfaceNetwork     all of the above, then the surface: one mesh.
+//
+// The contract: the mesh's first vertices are the network's (welded, in
+// input order: SurfaceResult::vertex_of_input), at their exact
+// coordinates; every curve edge of a surfaced patch is a mesh edge; the
+// mesh is edge-manifold, consistently oriented and intersection-free
+// (checked with exact predicates). A patch that cannot be surfaced without
+// breaking that is left out and reported, never included.
+#ifndef DOT_NETWORK_H_
+#define DOT_NETWORK_H_
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dot/control.h"
+#include "dot/fill_holes.h"
+#include "dot/geometry.h"
+#include "dot/mesh.h"
+#include "dot/problem.h"
+#include "dot/status.h"
+
+namespace dot {
+
+// Polylines over shared points, as a file gives them.
+struct CurveNetwork {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> normals;  // empty, or one surface normal per vertex
+  std::vector<std::vector<int32_t>> polylines;  // vertex ids, >= 2 each
+};
+
+// Network files, by extension:
+//  - .obj: 'v' lines and 'l' polylines (1-based, negative from the end;
+//    'l a/t b/t' texture indices ignored), one per curve or one per edge
+//    ('l a b') as Blender writes them; 'vn' lines, one per 'v', are surface
+//    normals. Faces ('f') are refused: the file is a mesh, not a network.
+//  - anything else, text: one point a line, "x y z" or "x y z nx ny nz";
+//    a blank line ends a polyline; '#' starts a comment.
+// Polylines meet where they share a vertex or its exact coordinates; a
+// polyline whose last point repeats its first is a closed curve. Errors
+// name the file and line.
+Status ReadNetworkFile(const std::string& path, CurveNetwork* out);
+Status ReadNetworkObj(std::istream& in, CurveNetwork* out);
+Status ReadNetworkText(std::istream& in, CurveNetwork* out);
+// OBJ 'v' (and 'vn') and 'l' lines, one per polyline.
+Status WriteNetworkObj(std::ostream& out, const CurveNetwork& network);
+
+// A curve: a path of edges between two junctions (vertices where other
+// than two edges meet), or a closed loop (first == last vertex).
+struct NetworkCurve {
+  std::vector<int32_t> vertices;  // graph vertex ids, >= 2
+  bool closed() const { return vertices.front() == vertices.back(); }
+};
+
+// The network as a graph of curves. Vertices are the input's points that
+// lie on a polyline, equal coordinates welded, in input order.
+struct NetworkGraph {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> normals;             // empty or one per vertex
+  std::vector<int32_t> vertex_of_input;  // input id -> vertex id, -1: unused
+  std::vector<int32_t> input_of_vertex;  // vertex id -> first input id
+  std::vector<NetworkCurve> curves;      // in order of their first edges
+  // Curves with an end no other curve meets (and curves only they reach),
+  // pruned repeatedly: they bound no patch. Sorted ids.
+  std::vector<int32_t> dangling;
+  int32_t merged_vertices = 0;  // input points welded to an earlier one
+};
+
+// kInvalidArgument names what is not a network: an id out of range, a
+// non-finite coordinate, a polyline of fewer than 2 points, an edge from a
+// point to itself, two polylines along one edge (duplicate curves), or two
+// curves that cross or touch away from a shared vertex (exact predicates).
+Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
+                         const Control& control = {});
+
+// One run of a curve in a cycle: the curve, and whether it is run from its
+// last vertex to its first.
+struct CurveUse {
+  int32_t curve = 0;
+  bool reversed = false;
+};
+
+// A patch's boundary: one loop of curve uses, or several (a patch with
+// islands: the multi-loop solver joins them).
+struct NetworkCycle {
+  std::vector<std::vector<CurveUse>> loops;
+};
+
+// The graph vertices of a loop in order, its first junction once.
+std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
+                                  const std::vector<CurveUse>& loop);
+
+// The cycles of a rotation system: at each junction the curves are ordered
+// around a normal (given, or fitted to the curves' directions, signs made
+// to agree across the network), and each face of that embedding is a
+// cycle, so every curve that is not dangling bounds two patches, one on
+// each side, the cycles consistently oriented. A closed curve alone (no
+// junction) bounds one patch. Manifold networks of any genus; a network
+// where three patches meet on one curve needs CyclesFromVertices.
+// `notes` receives what was found odd (a face that runs along a curve both
+// ways: a seam, left out).
+Status FindNetworkCycles(const NetworkGraph& graph,
+                         std::vector<NetworkCycle>* cycles,
+                         std::vector<std::string>* notes = nullptr,
+                         const Control& control = {});
+
+// Cycles a user gives: per patch, loops of input vertex ids (as
+// CurveNetwork numbers them), each loop listing the vertices in order;
+// consecutive listed vertices must be joined by a curve (listing only the
+// junctions suffices where one curve joins them). kInvalidArgument names
+// the patch, loop and vertices that do not form a cycle.
+Status CyclesFromVertices(
+    const NetworkGraph& graph,
+    const std::vector<std::vector<std::vector<int32_t>>>& patches,
+    std::vector<NetworkCycle>* cycles);
+
+// How SurfaceNetwork works. Every field, its meaning and default:
+//  weights          metric weights of each DOT patch. Default: squared
+//                   dihedral 1 and normal deviation 0.25 (against the
+//                   boundary normals the patches on each curve share), area
+//                   0.01. When scale_free_weights, the area weight is per
+//                   squared mean edge length and the perimeter weight per
+//                   mean edge length of each cycle.
+//  scale_free_weights  Default true.
+//  triangulate      options of each patch's Triangulate. Default: space
+//                   kDelaunay (a patch with no Delaunay triangulation tries
+//                   kDelaunayFirst, up to its vertex limit).
+//  stage            kTriangulate, kRefine or kFair. Default kFair.
+//  density          Liepa's density control factor for refinement, as
+//                   FillOptions::density. Default sqrt(2).
+//  fairing_continuity  0, 1 or 2 (membrane, thin plate, minimum
+//                   variation), over the whole network at once: free
+//                   vertices on both sides of a curve are in one system,
+//                   so patches meet without a crease unless the curve
+//                   bends. Default 1.
+//  cycles           patches given by the user (CyclesFromVertices); empty:
+//                   FindNetworkCycles.
+//  skip_longest     leave out the automatic cycle with the most vertices
+//                   (the outer rim of an open sheet). Default false.
+//  threads          patches solved at once; 0: all cores. Default 0.
+struct SurfaceOptions {
+  MetricWeights weights = DefaultSurfaceWeights();
+  bool scale_free_weights = true;
+  Options triangulate = FillOptions::DefaultTriangulateOptions();
+  FillStage stage = FillStage::kFair;
+  double density = 1.4142135623730951;
+  int fairing_continuity = 1;
+  std::vector<std::vector<std::vector<int32_t>>> cycles;
+  bool skip_longest = false;
+  int threads = 0;
+
+  static MetricWeights DefaultSurfaceWeights();
+};
+
+// kInvalidArgument naming the first field out of range.
+Status CheckSurfaceOptions(const SurfaceOptions& options);
+
+enum class PatchStatus { kSurfaced, kFailed, kSkipped, kStopped };
+std::string_view PatchStatusName(PatchStatus s);  // "surfaced", ...
+
+struct PatchReport {
+  int32_t id = 0;
+  std::vector<std::vector<CurveUse>> loops;  // its cycle
+  int32_t boundary_vertices = 0;
+  PatchStatus status = PatchStatus::kSkipped;
+  std::string reason;  // why failed or skipped; what was undone
+  SpaceUsed space = SpaceUsed::kNone;
+  Solver solver = Solver::kNone;
+  double cost = 0;       // the DOT patch's weighted cost
+  int32_t resolves = 0;  // re-solves forbidding chords that met others
+  // DOT found nothing that meets the rest only where it should: a fan
+  // from a new vertex at the loop's centroid (reason says why).
+  bool fan = false;
+  int32_t triangles = 0;  // in the output
+  int32_t refined_vertices = 0;
+  bool faired = false;  // its vertices moved by the network's fairing
+  double triangulate_ms = 0, refine_ms = 0;
+};
+
+struct SurfaceReport {
+  int32_t curves = 0, junctions = 0, merged_vertices = 0;
+  std::vector<int32_t> dangling;  // curve ids
+  std::vector<std::string> notes;
+  std::vector<PatchReport> patches;  // one per cycle
+  int32_t surfaced = 0, failed = 0;
+  // Every curve that is not dangling borders two surfaced patches or more
+  // (more: a non-manifold network, whose mesh is then non-manifold along
+  // those curves, counted in non_manifold_curves).
+  bool closed = false;
+  int32_t non_manifold_curves = 0;
+  // Fairing: whether it ran over the whole network (false: per patch, or
+  // not at all), and the patches whose fairing was undone.
+  bool faired_whole = false;
+  int64_t intersecting_pairs = 0;  // of the output: 0
+  double cycles_ms = 0, triangulate_ms = 0, refine_ms = 0, fair_ms = 0,
+         check_ms = 0, total_ms = 0;
+};
+
+// Progress: after the cycles (0 of n) and after each patch triangulated.
+using SurfaceProgressFn = std::function<void(int patches_done, int total)>;
+
+struct SurfaceResult {
+  Status status;
+  MeshData mesh;  // graph vertices first, then new ones
+  SurfaceReport report;
+  std::vector<int32_t> vertex_of_input;  // input id -> mesh vertex, -1
+};
+
+// Never throws. Not OK: the network, the options, or a stop (cancel,
+// deadline; nothing kept). OK with patches kFailed: the surface without
+// them (report.closed false).
+SurfaceResult SurfaceNetwork(const CurveNetwork& network,
+                             const SurfaceOptions& options = {},
+                             const Control& control = {},
+                             const SurfaceProgressFn& on_progress = nullptr);
+
+}  // namespace dot
+
+#endif  // DOT_NETWORK_H_

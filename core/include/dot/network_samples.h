@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Test and benchmark data for SurfaceNetwork: curve networks with known
+// surfaces. Hand-made ones (a cube's edges, a cylinder's rims), the edges of
+// a polygon mesh, and the rims of disk-shaped patches cut from a closed
+// mesh (the surface they came from is the reference).
+#ifndef DOT_NETWORK_SAMPLES_H_
+#define DOT_NETWORK_SAMPLES_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "dot/mesh.h"
+#include "dot/network.h"
+#include "dot/status.h"
+
+namespace dot {
+
+// The 12 edges of the unit cube [0,1]^3, each split into `segments` (>= 1)
+// equal pieces: 8 junctions of three curves, 6 square cycles.
+CurveNetwork CubeNetwork(int segments);
+
+// Two circular rims of `n` (>= 3) points, radius 1, at heights 0 and 2,
+// and, when `seam`, a straight seam of `n / 4` pieces (at least 1) joining
+// them at angle 0.
+CurveNetwork CylinderNetwork(int n, bool seam);
+
+// The edges of a polygon mesh's faces as curves, each split into
+// `segments` (>= 1) equal pieces (the faces of CGAL's 3torus.off give a
+// network of genus 3).
+CurveNetwork FaceEdgeNetwork(const PolygonSoup& soup, int segments);
+
+// A closed mesh cut into disk-shaped patches: `patches` seeds far apart
+// (farthest-point sampling from a face `seed` picks, distances along the
+// faces), each face given to its nearest seed, rims smoothed; while a patch
+// is not a disk with a simple rim (it wraps a limb or a handle), one more
+// seed at its farthest face (CutNetwork::patches says how many in all; at
+// most 2 patches + 16). The network is the patch rims, with only the
+// junctions and every `keep_every`-th (>= 1) other rim vertex (at least one
+// inside each curve). `face_patch` gives each mesh face its patch.
+struct CutNetwork {
+  CurveNetwork network;
+  std::vector<int32_t> face_patch;
+  int32_t patches = 0;
+};
+Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
+                      uint64_t seed, CutNetwork* out);
+
+}  // namespace dot
+
+#endif  // DOT_NETWORK_SAMPLES_H_

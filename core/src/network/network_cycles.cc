@@ -1,0 +1,608 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The cycles that bound patches. FindNetworkCycles embeds the network on a
+// surface by a rotation system: at each junction the curves leaving it are
+// ordered counter-clockwise around a normal (given, or the normal of the
+// plane that best fits their directions), the normals' signs are made to
+// agree along a maximum spanning tree of the junctions (a normal carried
+// along a curve, kept perpendicular to it, must meet the next one's), and
+// the faces of the embedding are traced: leaving each junction by the next
+// curve clockwise from the one arrived by keeps the face on the left. Every
+// curve then bounds two faces, run in opposite directions, so the patches
+// are consistently oriented and a closed network gives a closed surface,
+// whatever its genus (Euler's formula holds by construction).
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <set>
+
+#include "dot/network.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+// A curve leaving a junction: the curve and which end it leaves from
+// (0: its first vertex, run forward; 1: its last, run backward).
+struct Dart {
+  int32_t curve;
+  int end;
+  bool operator<(const Dart& o) const {
+    return curve != o.curve ? curve < o.curve : end < o.end;
+  }
+  bool operator==(const Dart& o) const {
+    return curve == o.curve && end == o.end;
+  }
+};
+
+// The curve's vertices as the dart leaves along it.
+std::vector<int32_t> DartPath(const NetworkGraph& g, const Dart& d) {
+  std::vector<int32_t> vs = g.curves[d.curve].vertices;
+  if (d.end == 1) std::reverse(vs.begin(), vs.end());
+  return vs;
+}
+
+// Where the curve heads: towards its point kDirectionFraction of its length
+// along (robust to a jagged first edge, as rims cut from a mesh have, and
+// near enough to stay in the surface's tangent plane).
+constexpr double kDirectionFraction = 0.1;
+Vec3 DartDirection(const NetworkGraph& g, const Dart& d) {
+  const std::vector<int32_t> vs = DartPath(g, d);
+  double length = 0;
+  for (size_t k = 0; k + 1 < vs.size(); ++k) {
+    length += Distance(g.vertices[vs[k]], g.vertices[vs[k + 1]]);
+  }
+  const double target = length * kDirectionFraction;
+  double run = 0;
+  Vec3 at = g.vertices[vs[1]];
+  for (size_t k = 0; k + 1 < vs.size(); ++k) {
+    const Vec3& p = g.vertices[vs[k]];
+    const Vec3& q = g.vertices[vs[k + 1]];
+    const double step = Distance(p, q);
+    if (run + step >= target) {
+      const double t = step > 0 ? (target - run) / step : 0;
+      at = p + t * (q - p);
+      break;
+    }
+    run += step;
+  }
+  const Vec3 dir = at - g.vertices[vs[0]];
+  return Norm(dir) > 0 ? Normalized(dir)
+                       : Normalized(g.vertices[vs[1]] - g.vertices[vs[0]]);
+}
+
+// The junction's normal: that of the plane that best fits the directions
+// (the eigenvector of the smallest eigenvalue of sum t t^T) when they lie
+// near one; otherwise (a corner, as a cube's, where every direction fits
+// equally badly) the mean direction, which points into the corner.
+Vec3 FitNormal(const std::vector<Vec3>& dirs) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  Vec3 mean;
+  for (const Vec3& t : dirs) {
+    const Eigen::Vector3d v(t.x, t.y, t.z);
+    m += v * v.transpose();
+    mean = mean + t;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m);
+  const Eigen::Vector3d lambda = eig.eigenvalues();
+  if (lambda(0) >= 0.5 * lambda(1) &&
+      Norm(mean) > 0.1 * static_cast<double>(dirs.size())) {
+    return Normalized(mean);
+  }
+  const Eigen::Vector3d n = eig.eigenvectors().col(0);
+  return Normalized(Vec3{n.x(), n.y(), n.z()});
+}
+
+// `n` carried from the curve's first vertex to its last, turned at each
+// vertex by the least rotation that takes one edge's direction to the
+// next (a discrete rotation-minimizing frame). Projecting n onto each edge's
+// normal plane instead flips it at turns past 90 degrees, as a curve over a
+// thin fold (an ear's rim) makes; a full reversal keeps n (a zigzag in the
+// surface, as rims cut along mesh edges make, is far more common).
+Vec3 Transport(const NetworkGraph& g, const std::vector<int32_t>& path,
+               Vec3 n) {
+  Vec3 t;
+  for (size_t k = 0; k + 1 < path.size(); ++k) {
+    const Vec3 edge = g.vertices[path[k + 1]] - g.vertices[path[k]];
+    if (Norm(edge) == 0) continue;
+    const Vec3 u = Normalized(edge);
+    if (k > 0) {
+      const Vec3 axis = Cross(t, u);
+      const double sin_a = Norm(axis), cos_a = Dot(t, u);
+      if (sin_a > 1e-12) {
+        const Vec3 axis_unit = (1.0 / sin_a) * axis;
+        n = cos_a * n + sin_a * Cross(axis_unit, n) +
+            ((1 - cos_a) * Dot(axis_unit, n)) * axis_unit;
+      }
+    }
+    t = u;
+  }
+  return Normalized(n);
+}
+
+struct Junction {
+  std::vector<Dart> darts;  // counter-clockwise around `normal`
+  Vec3 normal;
+  bool has_normal = false;
+  int32_t parent = -1;  // in the spanning tree that oriented the normals
+};
+
+void SortAround(const NetworkGraph& g, Junction* j) {
+  if (!j->has_normal || j->darts.size() < 3) return;
+  const Vec3 n = j->normal;
+  Vec3 u = Cross(n, Vec3{1, 0, 0});
+  if (Norm(u) < 0.5) u = Cross(n, Vec3{0, 1, 0});
+  u = Normalized(u);
+  const Vec3 w = Cross(n, u);
+  std::vector<std::pair<double, Dart>> keyed;
+  for (const Dart& d : j->darts) {
+    const Vec3 t = DartDirection(g, d);
+    keyed.push_back({std::atan2(Dot(t, w), Dot(t, u)), d});
+  }
+  std::sort(keyed.begin(), keyed.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t k = 0; k < keyed.size(); ++k) j->darts[k] = keyed[k].second;
+}
+
+// Signs of the fitted normals, made to agree along a maximum spanning tree
+// of the junction graph weighted by how well carried normals agree.
+void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
+                   const std::vector<char>& live) {
+  struct Link {
+    double weight;
+    int32_t from, to;
+    bool flip;
+    bool operator<(const Link& o) const { return weight < o.weight; }
+  };
+  std::map<int32_t, std::vector<std::pair<int32_t, int32_t>>> curves_at;
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    if (!live[c]) continue;
+    const auto& vs = g.curves[c].vertices;
+    if (vs.front() == vs.back()) continue;
+    curves_at[vs.front()].push_back({static_cast<int32_t>(c), 0});
+    curves_at[vs.back()].push_back({static_cast<int32_t>(c), 1});
+  }
+  std::set<int32_t> done;
+  for (auto& [root, junction] : *js) {
+    if (!junction.has_normal || done.count(root)) continue;
+    done.insert(root);
+    std::priority_queue<Link> queue;
+    auto push_from = [&](int32_t v) {
+      const Vec3 n = (*js)[v].normal;
+      for (const auto& [c, end] : curves_at[v]) {
+        std::vector<int32_t> path = g.curves[c].vertices;
+        if (end == 1) std::reverse(path.begin(), path.end());
+        const int32_t w = path.back();
+        const Junction& jw = (*js)[w];
+        if (!jw.has_normal || done.count(w)) continue;
+        const double d = Dot(Transport(g, path, n), jw.normal);
+        queue.push({std::abs(d), v, w, d < 0});
+      }
+    };
+    push_from(root);
+    while (!queue.empty()) {
+      const Link link = queue.top();
+      queue.pop();
+      if (done.count(link.to)) continue;
+      done.insert(link.to);
+      Junction& j = (*js)[link.to];
+      if (link.flip) {
+        j.normal = -1.0 * j.normal;
+        std::reverse(j.darts.begin(), j.darts.end());
+      }
+      j.parent = link.from;
+      push_from(link.to);
+    }
+  }
+}
+
+// Splits a face at junctions it passes more than once into simple loops.
+std::vector<std::vector<CurveUse>> SplitAtRepeats(
+    const NetworkGraph& g, const std::vector<CurveUse>& face) {
+  std::vector<std::vector<CurveUse>> out;
+  std::vector<CurveUse> stack;
+  std::vector<int32_t> starts;  // start junction of each use on the stack
+  for (const CurveUse& u : face) {
+    const auto& vs = g.curves[u.curve].vertices;
+    const int32_t from = u.reversed ? vs.back() : vs.front();
+    const int32_t to = u.reversed ? vs.front() : vs.back();
+    stack.push_back(u);
+    starts.push_back(from);
+    // Close a loop as soon as the walk returns to a junction on the stack.
+    for (size_t k = 0; k < starts.size(); ++k) {
+      if (starts[k] == to) {
+        out.emplace_back(stack.begin() + static_cast<long>(k), stack.end());
+        stack.resize(k);
+        starts.resize(k);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// A rotation system over darts 2c + end (see FindNetworkCycles).
+struct Rotation {
+  std::vector<int32_t> before;              // per dart
+  std::vector<std::vector<int32_t>> rings;  // per junction, counter-clockwise
+  int32_t Next(int32_t leave) const { return before[leave ^ 1]; }
+};
+
+bool Simple(const std::vector<CurveUse>& face) {
+  std::set<int32_t> curves;
+  for (const CurveUse& u : face) {
+    if (!curves.insert(u.curve).second) return false;
+  }
+  return true;
+}
+
+// Faces through the darts arriving at a junction: their count and how many
+// run along no curve twice.
+std::pair<int, int> FacesAt(const Rotation& rot,
+                            const std::vector<int32_t>& ring, RunTicker* ticker,
+                            bool* stop) {
+  std::set<int32_t> seen;
+  int faces = 0, simple = 0;
+  for (int32_t a : ring) {
+    const int32_t start = a ^ 1;  // leaves the other end, arrives here
+    if (seen.count(start)) continue;
+    ++faces;
+    std::set<int32_t> curves;
+    bool is_simple = true;
+    int32_t d = start;
+    do {
+      if (!ticker->Tick()) {
+        *stop = true;
+        return {0, 0};
+      }
+      seen.insert(d);
+      if (!curves.insert(d / 2).second) is_simple = false;
+      d = rot.Next(d);
+    } while (d != start);
+    simple += is_simple;
+  }
+  return {simple, faces};
+}
+
+// Faces of the whole rotation system: (simple ones, all).
+std::pair<int, int> AllFaces(const Rotation& rot) {
+  std::vector<char> seen(rot.before.size(), 0);
+  int faces = 0, simple = 0;
+  std::vector<int32_t> curves;
+  for (const auto& ring : rot.rings) {
+    for (int32_t start : ring) {
+      if (seen[start]) continue;
+      ++faces;
+      curves.clear();
+      int32_t d = start;
+      do {
+        seen[d] = 1;
+        curves.push_back(d / 2);
+        d = rot.Next(d);
+      } while (d != start);
+      std::sort(curves.begin(), curves.end());
+      simple +=
+          std::adjacent_find(curves.begin(), curves.end()) == curves.end();
+    }
+  }
+  return {simple, faces};
+}
+
+// The normals' signs are a guess where the network bends: a wrong sign at
+// one junction merges the faces around it (an embedding of higher genus),
+// and a wrong link of the spanning tree flips a whole subtree. So flip
+// single junctions, then subtrees (`subtrees`: ring indices of each), while
+// that makes more faces simple, or more faces (a lower genus).
+Status ImproveSigns(Rotation* rot,
+                    const std::vector<std::vector<int32_t>>& subtrees,
+                    RunTicker* ticker) {
+  auto set_ring = [&](int32_t r) {
+    const auto& ring = rot->rings[r];
+    for (size_t k = 0; k < ring.size(); ++k) {
+      rot->before[ring[k]] = ring[(k + ring.size() - 1) % ring.size()];
+    }
+  };
+  auto flip = [&](int32_t r) {
+    std::reverse(rot->rings[r].begin(), rot->rings[r].end());
+    set_ring(r);
+  };
+  // Subtree flips retrace every face: skipped on networks too large.
+  const bool global = static_cast<double>(subtrees.size()) *
+                          static_cast<double>(rot->before.size()) <
+                      2e8;
+  bool stop = false;
+  for (int pass = 0; pass < 8; ++pass) {
+    bool improved = false;
+    for (size_t r = 0; r < rot->rings.size(); ++r) {
+      if (rot->rings[r].size() < 3) continue;
+      const auto before = FacesAt(*rot, rot->rings[r], ticker, &stop);
+      flip(static_cast<int32_t>(r));
+      const auto after = FacesAt(*rot, rot->rings[r], ticker, &stop);
+      if (stop) return ticker->status();
+      if (after > before) {
+        improved = true;
+      } else {
+        flip(static_cast<int32_t>(r));
+      }
+      // Where four or more curves meet, their order is a guess too: swap
+      // neighbours.
+      auto& ring = rot->rings[r];
+      for (size_t k = 0; ring.size() >= 4 && k < ring.size(); ++k) {
+        const size_t l = (k + 1) % ring.size();
+        const auto old_score = FacesAt(*rot, ring, ticker, &stop);
+        std::swap(ring[k], ring[l]);
+        set_ring(static_cast<int32_t>(r));
+        const auto new_score = FacesAt(*rot, ring, ticker, &stop);
+        if (stop) return ticker->status();
+        if (new_score > old_score) {
+          improved = true;
+        } else {
+          std::swap(ring[k], ring[l]);
+          set_ring(static_cast<int32_t>(r));
+        }
+      }
+    }
+    if (global) {
+      auto score = AllFaces(*rot);
+      for (const auto& subtree : subtrees) {
+        if (!ticker->Poll()) return ticker->status();
+        for (int32_t r : subtree) flip(r);
+        const auto flipped = AllFaces(*rot);
+        if (flipped > score) {
+          score = flipped;
+          improved = true;
+        } else {
+          for (int32_t r : subtree) flip(r);
+        }
+      }
+    }
+    if (!improved) break;
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+Status FindNetworkCycles(const NetworkGraph& graph,
+                         std::vector<NetworkCycle>* cycles,
+                         std::vector<std::string>* notes,
+                         const Control& control) {
+  cycles->clear();
+  RunTicker ticker(control, "the network's cycle search");
+  std::vector<char> live(graph.curves.size(), 1);
+  for (int32_t c : graph.dangling) live[c] = 0;
+  std::map<int32_t, Junction> junctions;
+  for (size_t c = 0; c < graph.curves.size(); ++c) {
+    if (!live[c]) continue;
+    const auto& vs = graph.curves[c].vertices;
+    junctions[vs.front()].darts.push_back({static_cast<int32_t>(c), 0});
+    junctions[vs.back()].darts.push_back({static_cast<int32_t>(c), 1});
+  }
+  for (auto& [v, j] : junctions) {
+    if (!ticker.Tick()) return ticker.status();
+    if (!graph.normals.empty()) {
+      j.normal = graph.normals[v];
+      j.has_normal = true;
+    } else if (j.darts.size() >= 3) {
+      std::vector<Vec3> dirs;
+      for (const Dart& d : j.darts) dirs.push_back(DartDirection(graph, d));
+      j.normal = FitNormal(dirs);
+      j.has_normal = true;
+      // Refined as the normal of the fan the directions make around it,
+      // in the order they take around the first guess (a saddle's or a
+      // corner's directions fit no plane, but their fan has a normal).
+      for (int round = 0; round < 2; ++round) {
+        SortAround(graph, &j);
+        Vec3 fan;
+        for (size_t k = 0; k < j.darts.size(); ++k) {
+          fan = fan +
+                Cross(DartDirection(graph, j.darts[k]),
+                      DartDirection(graph, j.darts[(k + 1) % j.darts.size()]));
+        }
+        if (Norm(fan) < 1e-9) break;
+        j.normal = Normalized(fan);
+      }
+    }
+  }
+  if (graph.normals.empty()) OrientNormals(graph, &junctions, live);
+  for (auto& [v, j] : junctions) SortAround(graph, &j);
+
+  // Dart 2c + end; before[d]: the dart before d counter-clockwise at its
+  // junction. Leaving by d, a face arrives by d ^ 1 and leaves by the dart
+  // before that one (the next clockwise), keeping the face on its left.
+  Rotation rot;
+  rot.before.assign(2 * graph.curves.size(), -1);
+  std::map<int32_t, int32_t> ring_of;  // junction vertex -> ring
+  for (auto& [v, j] : junctions) {
+    ring_of[v] = static_cast<int32_t>(rot.rings.size());
+    std::vector<int32_t> ring;
+    for (const Dart& d : j.darts) ring.push_back(2 * d.curve + d.end);
+    rot.rings.push_back(ring);
+    for (size_t k = 0; k < ring.size(); ++k) {
+      rot.before[ring[k]] = ring[(k + ring.size() - 1) % ring.size()];
+    }
+  }
+  if (graph.normals.empty()) {
+    // Each junction's subtree in the spanning tree, as ring indices.
+    std::map<int32_t, std::vector<int32_t>> children;
+    for (auto& [v, j] : junctions) {
+      if (j.parent >= 0) children[j.parent].push_back(v);
+    }
+    std::vector<std::vector<int32_t>> subtrees;
+    for (auto& [v, j] : junctions) {
+      if (j.parent < 0) continue;
+      std::vector<int32_t> subtree, stack = {v};
+      while (!stack.empty()) {
+        const int32_t x = stack.back();
+        stack.pop_back();
+        subtree.push_back(ring_of[x]);
+        for (int32_t c : children[x]) stack.push_back(c);
+      }
+      subtrees.push_back(std::move(subtree));
+    }
+    const Status s = ImproveSigns(&rot, subtrees, &ticker);
+    if (!s.ok()) return s;
+  }
+
+  std::vector<char> used(rot.before.size(), 0);
+  std::set<std::vector<int32_t>> seen_loops;
+  for (const auto& ring : rot.rings) {
+    for (int32_t start : ring) {
+      if (used[start]) continue;
+      std::vector<CurveUse> face;
+      for (int32_t d = start; !used[d]; d = rot.Next(d)) {
+        if (!ticker.Tick()) return ticker.status();
+        used[d] = 1;
+        face.push_back({d / 2, (d & 1) == 1});
+      }
+      if (!Simple(face)) {
+        if (notes != nullptr) {
+          std::string ids;
+          for (const CurveUse& u : face) {
+            ids += (ids.empty() ? "" : " ") + std::to_string(u.curve);
+          }
+          notes->push_back(
+              "a face runs along a curve both ways (a seam, or a curve "
+              "that bounds no patch); left out: curves " +
+              ids);
+        }
+        continue;
+      }
+      for (auto& loop : SplitAtRepeats(graph, face)) {
+        // A cycle alone in its part of the network is the boundary of two
+        // faces, one each way: surface it once.
+        std::vector<int32_t> key;
+        for (const CurveUse& u : loop) key.push_back(u.curve);
+        std::sort(key.begin(), key.end());
+        if (!seen_loops.insert(key).second) continue;
+        cycles->push_back({{std::move(loop)}});
+      }
+    }
+  }
+  return OkStatus();
+}
+
+Status CyclesFromVertices(
+    const NetworkGraph& graph,
+    const std::vector<std::vector<std::vector<int32_t>>>& patches,
+    std::vector<NetworkCycle>* cycles) {
+  cycles->clear();
+  // Directed edge (x, y) -> (curve, whether it runs the curve backward).
+  std::map<std::pair<int32_t, int32_t>, CurveUse> edge_use;
+  std::vector<int32_t> curve_ends(graph.vertices.size(), 0);
+  for (size_t c = 0; c < graph.curves.size(); ++c) {
+    const auto& vs = graph.curves[c].vertices;
+    for (size_t k = 0; k + 1 < vs.size(); ++k) {
+      edge_use[{vs[k], vs[k + 1]}] = {static_cast<int32_t>(c), false};
+      edge_use[{vs[k + 1], vs[k]}] = {static_cast<int32_t>(c), true};
+    }
+    ++curve_ends[vs.front()];
+    ++curve_ends[vs.back()];
+  }
+  const int32_t inputs = static_cast<int32_t>(graph.vertex_of_input.size());
+  for (size_t p = 0; p < patches.size(); ++p) {
+    NetworkCycle cycle;
+    std::set<int32_t> in_patch;
+    for (size_t l = 0; l < patches[p].size(); ++l) {
+      const auto& listed = patches[p][l];
+      const std::string where = "cycle " + std::to_string(p + 1) + ", loop " +
+                                std::to_string(l + 1) + ": ";
+      if (listed.empty()) return InvalidArgument(where + "no vertices");
+      std::vector<int32_t> ids;
+      for (int32_t v : listed) {
+        if (v < 0 || v >= inputs || graph.vertex_of_input[v] < 0) {
+          return InvalidArgument(where + "vertex " +
+                                 std::to_string(static_cast<int64_t>(v) + 1) +
+                                 " is not on a curve of the network");
+        }
+        ids.push_back(graph.vertex_of_input[v]);
+      }
+      // Fill in the vertices between listed ones along the one curve that
+      // joins them.
+      std::vector<int32_t> walk;
+      for (size_t k = 0; k < ids.size(); ++k) {
+        const int32_t from = ids[k], to = ids[(k + 1) % ids.size()];
+        std::vector<std::vector<int32_t>> ways;
+        for (const auto& [e, use] : edge_use) {
+          if (e.first != from) continue;
+          std::vector<int32_t> way = {from};
+          int32_t prev = from, at = e.second;
+          while (true) {
+            way.push_back(at);
+            if (at == to || curve_ends[at] > 0 || at == from) break;
+            int32_t step = -1;
+            for (auto it = edge_use.lower_bound({at, INT32_MIN});
+                 it != edge_use.end() && it->first.first == at; ++it) {
+              if (it->first.second != prev) step = it->first.second;
+            }
+            prev = at;
+            at = step;
+          }
+          if (way.back() == to) ways.push_back(std::move(way));
+        }
+        const std::string pair =
+            "vertices " + std::to_string(listed[k] + 1) + " and " +
+            std::to_string(listed[(k + 1) % ids.size()] + 1);
+        if (ways.empty()) {
+          return InvalidArgument(where + "no curve joins " + pair);
+        }
+        // An edge between them is the way (a loop with no junction can
+        // also be run the long way round).
+        for (const auto& way : ways) {
+          if (way.size() == 2) {
+            ways = {way};
+            break;
+          }
+        }
+        if (ways.size() > 1 && ids.size() > 1) {
+          return InvalidArgument(where + std::to_string(ways.size()) +
+                                 " curves join " + pair +
+                                 ": list a vertex between them");
+        }
+        walk.insert(walk.end(), ways[0].begin(), ways[0].end() - 1);
+      }
+      std::set<int32_t> distinct(walk.begin(), walk.end());
+      if (distinct.size() != walk.size()) {
+        return InvalidArgument(where +
+                               "passes a vertex twice; a loop of a "
+                               "patch is a simple cycle");
+      }
+      for (int32_t v : walk) {
+        if (!in_patch.insert(v).second) {
+          return InvalidArgument(where +
+                                 "shares a vertex with another loop "
+                                 "of the cycle");
+        }
+      }
+      // Start at a junction (a curve end) and read off whole curves.
+      size_t start = 0;
+      while (start < walk.size() && curve_ends[walk[start]] == 0) ++start;
+      std::vector<CurveUse> loop;
+      if (start == walk.size()) start = 0;
+      const size_t n = walk.size();
+      for (size_t k = 0; k < n;) {
+        const int32_t x = walk[(start + k) % n];
+        const CurveUse use = edge_use.at({x, walk[(start + k + 1) % n]});
+        const auto& vs = graph.curves[use.curve].vertices;
+        const int32_t expected = use.reversed ? vs.back() : vs.front();
+        if (x != expected) {
+          return InvalidArgument(where + "starts or ends inside curve " +
+                                 std::to_string(use.curve) +
+                                 ": a loop runs along whole curves");
+        }
+        loop.push_back(use);
+        k += vs.size() - 1;
+      }
+      cycle.loops.push_back(std::move(loop));
+    }
+    if (cycle.loops.empty()) {
+      return InvalidArgument("cycle " + std::to_string(p + 1) +
+                             " has no loops");
+    }
+    cycles->push_back(std::move(cycle));
+  }
+  return OkStatus();
+}
+
+}  // namespace dot

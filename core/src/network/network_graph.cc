@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// BuildNetworkGraph: from polylines to curves between junctions. Points
+// are welded by exact coordinates (sketching tools and Blender's curve
+// export repeat a junction's point in every curve through it); what is not
+// a network is refused with the polylines and vertices named (numbered
+// from 1, as files number them).
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <tuple>
+#include <unordered_map>
+
+#include "dot/network.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+std::string Vertex(int32_t input_id) {
+  return "vertex " + std::to_string(input_id + 1);
+}
+std::string Polyline(size_t p) { return "polyline " + std::to_string(p + 1); }
+
+struct Edge {
+  int32_t a, b;      // graph vertices, in the polyline's direction
+  int32_t polyline;  // which polyline it came from
+  int32_t input_a, input_b;
+};
+
+// Welds points with equal coordinates; keeps input order.
+Status Weld(const CurveNetwork& net, NetworkGraph* g) {
+  const size_t n = net.vertices.size();
+  std::vector<char> used(n, 0);
+  for (size_t p = 0; p < net.polylines.size(); ++p) {
+    const auto& line = net.polylines[p];
+    if (line.size() < 2) {
+      return InvalidArgument(Polyline(p) + " has " +
+                             std::to_string(line.size()) +
+                             " point; a curve needs at least two");
+    }
+    for (int32_t v : line) {
+      if (v < 0 || static_cast<size_t>(v) >= n) {
+        return InvalidArgument(Polyline(p) + " names vertex " +
+                               std::to_string(static_cast<int64_t>(v) + 1) +
+                               ", not one of the " + std::to_string(n));
+      }
+      used[v] = 1;
+    }
+  }
+  if (!net.normals.empty() && net.normals.size() != n) {
+    return InvalidArgument(std::to_string(net.normals.size()) +
+                           " normals for " + std::to_string(n) +
+                           " vertices: give one per vertex or none");
+  }
+  std::map<std::tuple<double, double, double>, int32_t> by_point;
+  g->vertex_of_input.assign(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    const Vec3& p = net.vertices[i];
+    if (!IsFinite(p)) {
+      return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
+                             " has a coordinate that is not a finite number");
+    }
+    const auto key = std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
+                                     p.z == 0 ? 0.0 : p.z);  // -0 == 0
+    auto [it, added] =
+        by_point.emplace(key, static_cast<int32_t>(g->vertices.size()));
+    if (added) {
+      g->vertices.push_back(p);
+      g->input_of_vertex.push_back(static_cast<int32_t>(i));
+      if (!net.normals.empty()) {
+        const Vec3& nv = net.normals[i];
+        if (!IsFinite(nv) || Norm(nv) == 0) {
+          return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
+                                 " has a normal that is zero or not finite");
+        }
+        g->normals.push_back(Normalized(nv));
+      }
+    } else {
+      ++g->merged_vertices;
+    }
+    g->vertex_of_input[i] = it->second;
+  }
+  return OkStatus();
+}
+
+Status CollectEdges(const CurveNetwork& net, const NetworkGraph& g,
+                    std::vector<Edge>* edges) {
+  std::unordered_map<uint64_t, int32_t> seen;  // undirected key -> edge
+  for (size_t p = 0; p < net.polylines.size(); ++p) {
+    const auto& line = net.polylines[p];
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+      const Edge e{g.vertex_of_input[line[k]], g.vertex_of_input[line[k + 1]],
+                   static_cast<int32_t>(p), line[k], line[k + 1]};
+      if (e.a == e.b) {
+        return InvalidArgument(
+            Polyline(p) + " joins " + Vertex(e.input_a) + " to " +
+            (e.input_a == e.input_b
+                 ? std::string("itself")
+                 : Vertex(e.input_b) + ", a point at the same place"));
+      }
+      const uint64_t key = (static_cast<uint64_t>(std::min(e.a, e.b)) << 32) |
+                           static_cast<uint32_t>(std::max(e.a, e.b));
+      auto [it, added] = seen.emplace(key, static_cast<int32_t>(edges->size()));
+      if (!added) {
+        const Edge& o = (*edges)[it->second];
+        return InvalidArgument(
+            (o.polyline == e.polyline
+                 ? Polyline(p) + " runs twice"
+                 : "polylines " + std::to_string(o.polyline + 1) + " and " +
+                       std::to_string(p + 1) + " both run") +
+            " along the edge between " + Vertex(e.input_a) + " and " +
+            Vertex(e.input_b) + " (duplicate curves)");
+      }
+      edges->push_back(e);
+    }
+  }
+  return OkStatus();
+}
+
+// Two edges that meet other than at a shared end (exact predicates).
+Status CheckCrossings(const NetworkGraph& g, const std::vector<Edge>& edges,
+                      const Control& control) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;
+  std::vector<Box> boxes;
+  boxes.reserve(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) {
+    const Vec3& p = g.vertices[edges[i].a];
+    const Vec3& q = g.vertices[edges[i].b];
+    double lo[3] = {std::min(p.x, q.x), std::min(p.y, q.y), std::min(p.z, q.z)};
+    double hi[3] = {std::max(p.x, q.x), std::max(p.y, q.y), std::max(p.z, q.z)};
+    boxes.emplace_back(lo, hi, static_cast<int32_t>(i));
+  }
+  auto point = [&](int32_t v) {
+    const Vec3& p = g.vertices[v];
+    return K::Point_3(p.x, p.y, p.z);
+  };
+  struct Found {
+    int32_t i, j;
+  };
+  RunTicker ticker(control, "the network's crossing check");
+  try {
+    CGAL::box_self_intersection_d(
+        boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+          if (!ticker.Tick()) throw ticker.status();
+          const Edge& e = edges[x.info()];
+          const Edge& f = edges[y.info()];
+          const bool shares_a = e.a == f.a || e.a == f.b;
+          const bool shares_b = e.b == f.a || e.b == f.b;
+          if (shares_a && shares_b) return;  // cannot: no duplicates
+          const K::Segment_3 s(point(e.a), point(e.b));
+          const K::Segment_3 t(point(f.a), point(f.b));
+          if (shares_a || shares_b) {
+            // Sharing one end, they meet elsewhere only when they overlap.
+            const int32_t c = shares_a ? e.a : e.b;
+            const int32_t u = c == e.a ? e.b : e.a;
+            const int32_t w = c == f.a ? f.b : f.a;
+            if (!CGAL::collinear(point(c), point(u), point(w))) return;
+            if ((point(u) - point(c)) * (point(w) - point(c)) <= 0) return;
+          } else if (!CGAL::do_intersect(s, t)) {
+            return;
+          }
+          throw Found{std::min(x.info(), y.info()),
+                      std::max(x.info(), y.info())};
+        });
+  } catch (const Status& stop) {
+    return stop;
+  } catch (const Found& found) {
+    const Edge& e = edges[found.i];
+    const Edge& f = edges[found.j];
+    return InvalidArgument(
+        "curves cross: the edge " + Vertex(e.input_a) + "-" +
+        Vertex(e.input_b) + " of " + Polyline(e.polyline) + " and the edge " +
+        Vertex(f.input_a) + "-" + Vertex(f.input_b) + " of " +
+        Polyline(f.polyline) +
+        " meet away from a shared vertex (give the crossing point as a "
+        "vertex of both, or move one curve)");
+  }
+  return OkStatus();
+}
+
+// Splits the edges into curves between junctions (degree other than 2).
+void TraceCurves(const std::vector<Edge>& edges, NetworkGraph* g) {
+  const size_t n = g->vertices.size();
+  std::vector<std::vector<int32_t>> incident(n);
+  for (size_t i = 0; i < edges.size(); ++i) {
+    incident[edges[i].a].push_back(static_cast<int32_t>(i));
+    incident[edges[i].b].push_back(static_cast<int32_t>(i));
+  }
+  std::vector<char> taken(edges.size(), 0);
+  struct Traced {
+    int32_t first_edge;
+    NetworkCurve curve;
+  };
+  std::vector<Traced> traced;
+  auto other = [&](int32_t e, int32_t v) {
+    return edges[e].a == v ? edges[e].b : edges[e].a;
+  };
+  // Walks from v along edge e until a junction or back to `stop`.
+  auto walk = [&](int32_t v, int32_t e, int32_t stop) {
+    Traced t{e, {{v}}};
+    while (true) {
+      taken[e] = 1;
+      t.first_edge = std::min(t.first_edge, e);
+      v = other(e, v);
+      t.curve.vertices.push_back(v);
+      if (incident[v].size() != 2 || v == stop) break;
+      e = incident[v][0] == e ? incident[v][1] : incident[v][0];
+    }
+    return t;
+  };
+  for (size_t v = 0; v < n; ++v) {
+    if (incident[v].size() == 2) continue;
+    for (int32_t e : incident[v]) {
+      if (!taken[e]) traced.push_back(walk(static_cast<int32_t>(v), e, -1));
+    }
+  }
+  for (size_t e = 0; e < edges.size(); ++e) {  // loops with no junction
+    if (!taken[e]) {
+      traced.push_back(walk(edges[e].a, static_cast<int32_t>(e), edges[e].a));
+    }
+  }
+  std::sort(traced.begin(), traced.end(), [](const Traced& x, const Traced& y) {
+    return x.first_edge < y.first_edge;
+  });
+  for (Traced& t : traced) {
+    // Run the curve the way its first edge runs in the file.
+    auto& vs = t.curve.vertices;
+    const Edge& e = edges[t.first_edge];
+    for (size_t k = 0; k + 1 < vs.size(); ++k) {
+      if (vs[k] == e.b && vs[k + 1] == e.a) {
+        std::reverse(vs.begin(), vs.end());
+        break;
+      }
+      if (vs[k] == e.a && vs[k + 1] == e.b) break;
+    }
+    g->curves.push_back(std::move(t.curve));
+  }
+}
+
+// Curves with a free end, pruned until none is left.
+void PruneDangling(NetworkGraph* g) {
+  std::vector<int32_t> ends(g->vertices.size(), 0);
+  for (const NetworkCurve& c : g->curves) {
+    ++ends[c.vertices.front()];
+    ++ends[c.vertices.back()];
+  }
+  std::vector<char> gone(g->curves.size(), 0);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < g->curves.size(); ++i) {
+      const NetworkCurve& c = g->curves[i];
+      if (gone[i] || c.closed()) continue;
+      if (ends[c.vertices.front()] == 1 || ends[c.vertices.back()] == 1) {
+        gone[i] = 1;
+        --ends[c.vertices.front()];
+        --ends[c.vertices.back()];
+        g->dangling.push_back(static_cast<int32_t>(i));
+        changed = true;
+      }
+    }
+  }
+  std::sort(g->dangling.begin(), g->dangling.end());
+}
+
+}  // namespace
+
+Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
+                         const Control& control) {
+  *out = {};
+  if (network.polylines.empty()) {
+    return InvalidArgument("the network has no polylines");
+  }
+  Status s = Weld(network, out);
+  if (!s.ok()) return s;
+  std::vector<Edge> edges;
+  s = CollectEdges(network, *out, &edges);
+  if (!s.ok()) return s;
+  s = CheckCrossings(*out, edges, control);
+  if (!s.ok()) return s;
+  TraceCurves(edges, out);
+  PruneDangling(out);
+  return OkStatus();
+}
+
+std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
+                                  const std::vector<CurveUse>& loop) {
+  std::vector<int32_t> out;
+  for (const CurveUse& u : loop) {
+    const auto& vs = graph.curves[u.curve].vertices;
+    if (u.reversed) {
+      out.insert(out.end(), vs.rbegin(), vs.rend() - 1);
+    } else {
+      out.insert(out.end(), vs.begin(), vs.end() - 1);
+    }
+  }
+  return out;
+}
+
+}  // namespace dot

@@ -1,0 +1,662 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// SurfaceNetwork: graph -> cycles -> DOT per patch (twice: the second time
+// with the boundary normals the first patches give the curves, shared by
+// the patches on each curve) -> re-solves of patches that meet others ->
+// refinement per patch -> fairing of the whole network -> exact checks.
+// Every step that could break the contract is checked with exact
+// predicates and undone patch by patch where it does.
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <unordered_map>
+
+#include "dot/validate.h"
+#include "network/surface_steps.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Chord = std::pair<int32_t, int32_t>;
+
+// Bytes refinement and fairing take per new vertex (as FillHoles counts).
+constexpr int64_t kBytesPerRefinedVertex = 4096;
+constexpr int kResolveRounds = 4;
+
+Chord Key(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
+
+struct Work {
+  std::vector<std::vector<int32_t>> loops;  // graph vertex ids
+  std::set<Chord> boundary;                 // its loops' edges
+  std::vector<Chord> forbidden;             // network edges, chords to avoid
+  PatchMesh dot;                            // the DOT patch
+  PatchMesh mesh;                           // as it stands (refined)
+  bool live = false;                        // has a patch in the surface
+};
+
+template <typename F>
+Status ForEachPatch(const SurfaceOptions& options, const std::vector<int>& ids,
+                    const F& f) {
+  const int threads =
+      options.threads > 0
+          ? options.threads
+          : static_cast<int>(std::thread::hardware_concurrency());
+  std::vector<Status> status(ids.size());
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(size_t{0}, ids.size(), size_t{1},
+                      [&](size_t k) { status[k] = f(ids[k]); });
+  });
+  for (const Status& s : status) {
+    if (!s.ok()) return s;
+  }
+  return OkStatus();
+}
+
+// The live patches as one mesh over graph ids then new vertices; `owner`
+// receives each face's patch and `first_vertex` each patch's offset.
+MeshData Assemble(const NetworkGraph& g, const std::vector<Work>& work,
+                  bool refined, std::vector<int32_t>* owner,
+                  std::vector<int32_t>* first_vertex) {
+  MeshData m;
+  m.vertices = g.vertices;
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
+  owner->clear();
+  first_vertex->assign(work.size(), 0);
+  for (size_t p = 0; p < work.size(); ++p) {
+    if (!work[p].live) continue;
+    const PatchMesh& pm = refined ? work[p].mesh : work[p].dot;
+    const auto offset = static_cast<int32_t>(m.vertices.size()) - first_new;
+    (*first_vertex)[p] = static_cast<int32_t>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), pm.new_vertices.begin(),
+                      pm.new_vertices.end());
+    for (Triangle t : pm.faces) {
+      for (int32_t& v : t) {
+        if (v >= first_new) v += offset;
+      }
+      m.triangles.push_back(t);
+      owner->push_back(static_cast<int32_t>(p));
+    }
+  }
+  return m;
+}
+
+// Patches that meet others wrongly: a chord on more than two faces (or
+// twice the same way), or faces that cross. For each, the chords of its
+// faces in the conflict are added to `more` (patch -> chords), the later
+// patch of a pair giving way when it can.
+Status FindConflicts(const NetworkGraph& g, const std::vector<Work>& work,
+                     const std::vector<char>& stubborn, bool earlier_first,
+                     const Control& control,
+                     std::map<int32_t, std::set<Chord>>* more,
+                     std::map<int32_t, std::string>* why) {
+  more->clear();
+  why->clear();
+  std::vector<int32_t> owner, first;
+  const MeshData m = Assemble(g, work, false, &owner, &first);
+  auto chords_of = [&](size_t f) {
+    std::vector<Chord> out;
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const Chord c = Key(t[k], t[(k + 1) % 3]);
+      if (!work[owner[f]].boundary.count(c)) out.push_back(c);
+    }
+    return out;
+  };
+  // The later patch (`earlier_first`: the earlier) gives way when it has a
+  // chord there and has not failed to give way before (`stubborn`); else
+  // the other one.
+  auto blame = [&](size_t f1, size_t f2, const std::string& what) {
+    size_t a = f1, b = f2;
+    if ((owner[a] < owner[b]) != earlier_first) std::swap(a, b);
+    if (chords_of(a).empty() || stubborn[owner[a]]) std::swap(a, b);
+    if (chords_of(a).empty() || stubborn[owner[a]]) {
+      if (owner[a] < owner[b]) std::swap(a, b);  // neither can: the later
+    }
+    const std::vector<Chord> chords = chords_of(a);
+    const int32_t p = owner[a];
+    (*more)[p].insert(chords.begin(), chords.end());
+    if (stubborn[p]) (*more)[p].clear();  // cannot give way: it fails
+    if (!why->count(p)) (*why)[p] = what + " patch " + std::to_string(owner[b]);
+  };
+  std::map<Chord, std::vector<size_t>> faces_on;
+  for (size_t f = 0; f < m.triangles.size(); ++f) {
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      faces_on[Key(t[k], t[(k + 1) % 3])].push_back(f);
+  }
+  for (const auto& [edge, faces] : faces_on) {
+    if (faces.size() < 2) continue;
+    for (size_t i = 0; i < faces.size(); ++i) {
+      for (size_t j = i + 1; j < faces.size(); ++j) {
+        if (owner[faces[i]] == owner[faces[j]]) continue;
+        const bool chord_i = !work[owner[faces[i]]].boundary.count(edge);
+        const bool chord_j = !work[owner[faces[j]]].boundary.count(edge);
+        if (chord_i || chord_j)
+          blame(faces[i], faces[j], "shares an edge with");
+      }
+    }
+  }
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  const Status s =
+      ListIntersectingPairs(m.vertices, m.triangles, SIZE_MAX, control, &pairs);
+  if (!s.ok()) return s;
+  for (const auto& [f1, f2] : pairs) {
+    if (owner[f1] == owner[f2]) {
+      (*more)[owner[f1]];
+      (*why)[owner[f1]] = "crosses itself";
+      continue;
+    }
+    blame(static_cast<size_t>(f1), static_cast<size_t>(f2), "crosses");
+  }
+  return OkStatus();
+}
+
+// Patches of faces in intersecting pairs of `m` (owner per face).
+Status CrossingPatches(const MeshData& m, const std::vector<int32_t>& owner,
+                       const Control& control, std::set<int32_t>* patches,
+                       int64_t* count) {
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+  const Status s =
+      ListIntersectingPairs(m.vertices, m.triangles, SIZE_MAX, control, &pairs);
+  if (!s.ok()) return s;
+  patches->clear();
+  for (const auto& [a, b] : pairs) {
+    patches->insert(owner[a]);
+    patches->insert(owner[b]);
+  }
+  *count = static_cast<int64_t>(pairs.size());
+  return OkStatus();
+}
+
+// Fair each live patch alone, its boundary fixed (when the patches do not
+// form one manifold surface); a patch whose fairing crosses anything keeps
+// its refined vertices.
+Status FairEachPatch(const NetworkGraph& g, const SurfaceOptions& options,
+                     const Control& control, std::vector<Work>* work,
+                     std::vector<PatchReport>* reports) {
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
+  for (size_t p = 0; p < work->size(); ++p) {
+    Work& w = (*work)[p];
+    if (!w.live || w.mesh.new_vertices.empty()) continue;
+    // Boundary vertices first (fixed), then the patch's own.
+    MeshData m;
+    std::map<int32_t, int32_t> local;
+    for (const Triangle& t : w.mesh.faces) {
+      for (int32_t v : t) {
+        if (v < first_new && local.emplace(v, m.vertices.size()).second) {
+          m.vertices.push_back(g.vertices[v]);
+        }
+      }
+    }
+    const auto fixed_count = static_cast<int32_t>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), w.mesh.new_vertices.begin(),
+                      w.mesh.new_vertices.end());
+    for (Triangle t : w.mesh.faces) {
+      for (int32_t& v : t) {
+        v = v < first_new ? local[v] : fixed_count + (v - first_new);
+      }
+      m.triangles.push_back(t);
+    }
+    bool faired = false;
+    std::string why;
+    Status s = FairMesh(&m, fixed_count, {}, options.fairing_continuity,
+                        control, &faired, &why);
+    if (!s.ok()) return s;
+    if (!faired) {
+      (*reports)[p].reason += (*reports)[p].reason.empty() ? "" : "; ";
+      (*reports)[p].reason += "not faired: " + why;
+      continue;
+    }
+    PatchMesh faired_patch = w.mesh;
+    std::copy(m.vertices.begin() + fixed_count, m.vertices.end(),
+              faired_patch.new_vertices.begin());
+    std::swap(w.mesh, faired_patch);
+    std::vector<int32_t> owner, first;
+    const MeshData all = Assemble(g, *work, true, &owner, &first);
+    std::set<int32_t> crossing;
+    int64_t pairs = 0;
+    s = CrossingPatches(all, owner, control, &crossing, &pairs);
+    if (!s.ok()) return s;
+    if (pairs > 0) {
+      std::swap(w.mesh, faired_patch);
+      (*reports)[p].reason += (*reports)[p].reason.empty() ? "" : "; ";
+      (*reports)[p].reason += "fairing undone: it made faces cross";
+    } else {
+      (*reports)[p].faired = true;
+    }
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+MetricWeights SurfaceOptions::DefaultSurfaceWeights() {
+  MetricWeights w;
+  w[Metric::kSquaredDihedral] = 1;
+  w[Metric::kNormalDeviation] = 0.25;
+  w[Metric::kArea] = 0.01;
+  return w;
+}
+
+Status CheckSurfaceOptions(const SurfaceOptions& options) {
+  FillOptions fill;
+  fill.weights = options.weights;
+  fill.density = options.density;
+  fill.fairing_continuity = options.fairing_continuity;
+  fill.threads = options.threads;
+  return CheckFillOptions(fill);
+}
+
+std::string_view PatchStatusName(PatchStatus s) {
+  switch (s) {
+    case PatchStatus::kSurfaced:
+      return "surfaced";
+    case PatchStatus::kFailed:
+      return "failed";
+    case PatchStatus::kSkipped:
+      return "skipped";
+    case PatchStatus::kStopped:
+      return "stopped";
+  }
+  return "unknown";
+}
+
+SurfaceResult SurfaceNetwork(const CurveNetwork& network,
+                             const SurfaceOptions& options,
+                             const Control& control,
+                             const SurfaceProgressFn& on_progress) {
+  const auto t_start = Clock::now();
+  SurfaceResult out;
+  SurfaceReport& report = out.report;
+  auto fail = [&](Status s) {
+    out.status = std::move(s);
+    out.mesh = {};
+    report.total_ms = MsSince(t_start);
+    return std::move(out);
+  };
+  Status s = CheckSurfaceOptions(options);
+  if (!s.ok()) return fail(s);
+  NetworkGraph g;
+  s = BuildNetworkGraph(network, &g, control);
+  if (!s.ok()) return fail(s);
+  out.vertex_of_input = g.vertex_of_input;
+  report.curves = static_cast<int32_t>(g.curves.size());
+  report.merged_vertices = g.merged_vertices;
+  report.dangling = g.dangling;
+  {
+    std::set<int32_t> ends;
+    for (const NetworkCurve& c : g.curves) {
+      ends.insert(c.vertices.front());
+      ends.insert(c.vertices.back());
+    }
+    report.junctions = static_cast<int32_t>(ends.size());
+  }
+  auto t = Clock::now();
+  std::vector<NetworkCycle> cycles;
+  s = options.cycles.empty()
+          ? FindNetworkCycles(g, &cycles, &report.notes, control)
+          : CyclesFromVertices(g, options.cycles, &cycles);
+  if (!s.ok()) return fail(s);
+  report.cycles_ms = MsSince(t);
+  if (cycles.empty()) {
+    return fail(InvalidArgument(
+        "the network bounds no patch (" + std::to_string(g.dangling.size()) +
+        " of its " + std::to_string(g.curves.size()) +
+        " curves are dangling: an end no other curve meets)"));
+  }
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
+  const size_t patch_count = cycles.size();
+  std::vector<Work> work(patch_count);
+  report.patches.resize(patch_count);
+  std::vector<std::vector<int32_t>> neighbours(g.vertices.size());
+  for (const NetworkCurve& c : g.curves) {
+    for (size_t k = 0; k + 1 < c.vertices.size(); ++k) {
+      neighbours[c.vertices[k]].push_back(c.vertices[k + 1]);
+      neighbours[c.vertices[k + 1]].push_back(c.vertices[k]);
+    }
+  }
+  for (size_t p = 0; p < patch_count; ++p) {
+    PatchReport& r = report.patches[p];
+    r.id = static_cast<int32_t>(p);
+    r.loops = cycles[p].loops;
+    Work& w = work[p];
+    std::set<int32_t> in_patch;
+    for (const auto& loop : cycles[p].loops) {
+      w.loops.push_back(LoopVertices(g, loop));
+      const auto& vs = w.loops.back();
+      r.boundary_vertices += static_cast<int32_t>(vs.size());
+      for (size_t k = 0; k < vs.size(); ++k) {
+        w.boundary.insert(Key(vs[k], vs[(k + 1) % vs.size()]));
+        in_patch.insert(vs[k]);
+      }
+    }
+    for (int32_t v : in_patch) {
+      for (int32_t u : neighbours[v]) {
+        if (v < u && in_patch.count(u)) w.forbidden.emplace_back(v, u);
+      }
+    }
+  }
+  std::vector<int> todo;
+  if (options.skip_longest && options.cycles.empty()) {
+    size_t longest = 0;
+    for (size_t p = 1; p < patch_count; ++p) {
+      if (report.patches[p].boundary_vertices >
+          report.patches[longest].boundary_vertices) {
+        longest = p;
+      }
+    }
+    report.patches[longest].reason = "the longest cycle (skip_longest)";
+  }
+  for (size_t p = 0; p < patch_count; ++p) {
+    if (report.patches[p].reason.empty()) todo.push_back(static_cast<int>(p));
+  }
+  if (on_progress) on_progress(0, static_cast<int>(todo.size()));
+
+  // Pass 1: DOT without normals, for the normals the curves share.
+  t = Clock::now();
+  Control patch_control = control;
+  patch_control.progress = nullptr;
+  std::vector<Status> first_status(patch_count);
+  std::vector<Vec3> normals = g.normals;
+  if (normals.empty()) {
+    s = ForEachPatch(options, todo, [&](int p) {
+      PatchReport scratch;
+      Status r =
+          TriangulatePatch(g, work[p].loops, {}, work[p].forbidden, options,
+                           patch_control, &work[p].dot, &scratch);
+      if (r.code == StatusCode::kCancelled ||
+          r.code == StatusCode::kDeadlineExceeded) {
+        return r;
+      }
+      first_status[p] = r;
+      return OkStatus();
+    });
+    if (!s.ok()) return fail(s);
+    normals.assign(g.vertices.size(), Vec3{});
+    for (int p : todo) {
+      if (!first_status[p].ok()) continue;
+      for (const Triangle& tri : work[p].dot.faces) {
+        const Vec3& a = g.vertices[tri[0]];
+        const Vec3& b = g.vertices[tri[1]];
+        const Vec3& c = g.vertices[tri[2]];
+        const Vec3 n = Cross(b - a, c - a);
+        if (Norm(n) == 0) continue;
+        const Vec3 unit = Normalized(n);
+        // Angle-weighted: each corner adds the face normal times its angle.
+        const Vec3* corner[3] = {&a, &b, &c};
+        for (int k = 0; k < 3; ++k) {
+          const Vec3 e1 = *corner[(k + 1) % 3] - *corner[k];
+          const Vec3 e2 = *corner[(k + 2) % 3] - *corner[k];
+          const double angle = std::atan2(Norm(Cross(e1, e2)), Dot(e1, e2));
+          normals[tri[k]] = normals[tri[k]] + angle * unit;
+        }
+      }
+    }
+    for (Vec3& n : normals) {
+      if (Norm(n) > 0) n = Normalized(n);
+    }
+  }
+  // Pass 2: with the shared normals (a vertex no first patch reached has a
+  // zero normal, which the metric ignores).
+  std::mutex progress_mu;
+  int done = 0;
+  std::vector<Status> status(patch_count);
+  auto solve = [&](int p) {
+    Status r =
+        TriangulatePatch(g, work[p].loops, normals, work[p].forbidden, options,
+                         patch_control, &work[p].dot, &report.patches[p]);
+    if (r.code == StatusCode::kCancelled ||
+        r.code == StatusCode::kDeadlineExceeded) {
+      return r;
+    }
+    status[p] = r;
+    work[p].live = r.ok();
+    return OkStatus();
+  };
+  s = ForEachPatch(options, todo, [&](int p) {
+    Status r = solve(p);
+    if (r.ok() && on_progress) {
+      std::lock_guard<std::mutex> lock(progress_mu);
+      on_progress(++done, static_cast<int>(todo.size()));
+    }
+    return r;
+  });
+  if (!s.ok()) return fail(s);
+  // Patches that meet others wrongly are solved again without the chords
+  // of their faces in the conflict.
+  // A patch DOT could not triangulate, or that still meets others after
+  // its re-solves, gets a fan (once). A patch whose re-solve finds nothing
+  // is put back as it was and made to stand: the other patch of its
+  // conflicts gives way next time.
+  std::vector<char> stubborn(patch_count, 0), fanned(patch_count, 0);
+  auto fan = [&](int p, const std::string& why) {
+    fanned[p] = 1;
+    if (!FanPatch(g, work[p].loops, first_new, &work[p].dot).ok()) return;
+    work[p].live = true;
+    report.patches[p].fan = true;
+    report.patches[p].space = SpaceUsed::kNone;
+    report.patches[p].solver = Solver::kNone;
+    report.patches[p].cost = 0;
+    report.patches[p].reason = "a fan from the centroid: " + why;
+    status[p] = OkStatus();
+  };
+  for (int p : todo) {
+    if (status[p].code == StatusCode::kNoTriangulation) {
+      fan(p, "DOT found no triangulation (" + status[p].message + ")");
+    }
+  }
+  for (int round = 0;; ++round) {
+    std::map<int32_t, std::set<Chord>> more;
+    std::map<int32_t, std::string> why;
+    s = FindConflicts(g, work, stubborn, round % 2 == 1, control, &more, &why);
+    if (!s.ok()) return fail(s);
+    if (more.empty()) break;
+    std::vector<int> again;
+    std::map<int, Work> before;
+    for (auto& [p, chords] : more) {
+      const std::string failure = "its surface " + why[p] + " after " +
+                                  std::to_string(report.patches[p].resolves) +
+                                  " re-solves";
+      if (round >= kResolveRounds || chords.empty() || fanned[p]) {
+        if (!fanned[p]) {
+          fan(p, failure);
+          if (work[p].live) continue;
+        }
+        work[p].live = false;
+        status[p] = MakeStatus(
+            StatusCode::kNoTriangulation,
+            report.patches[p].fan ? failure + ", and so does a fan" : failure);
+        continue;
+      }
+      before[p] = work[p];
+      work[p].forbidden.insert(work[p].forbidden.end(), chords.begin(),
+                               chords.end());
+      ++report.patches[p].resolves;
+      again.push_back(p);
+    }
+    s = ForEachPatch(options, again, solve);
+    if (!s.ok()) return fail(s);
+    for (auto& [p, old] : before) {
+      if (work[p].live) continue;
+      work[p] = std::move(old);
+      status[p] = OkStatus();
+      stubborn[p] = 1;
+    }
+  }
+  for (int p : todo) {
+    PatchReport& r = report.patches[p];
+    report.triangulate_ms += r.triangulate_ms;
+    if (work[p].live) {
+      r.status = PatchStatus::kSurfaced;
+      work[p].mesh = work[p].dot;
+    } else {
+      r.status = PatchStatus::kFailed;
+      r.reason = status[p].message;
+      work[p].dot = {};
+    }
+  }
+  report.triangulate_ms = MsSince(t);
+
+  // Refinement, patch by patch; patches past the memory budget keep their
+  // DOT faces. A refined patch that crosses another is put back.
+  std::vector<int> live;
+  for (int p : todo) {
+    if (work[p].live) live.push_back(p);
+  }
+  if (options.stage != FillStage::kTriangulate) {
+    t = Clock::now();
+    s = ForEachPatch(options, live, [&](int p) {
+      return RefinePatch(g, options, patch_control, first_new, &work[p].mesh,
+                         &report.patches[p]);
+    });
+    if (!s.ok()) return fail(s);
+    int64_t total = 0;
+    const int64_t cap =
+        options.triangulate.memory_budget_bytes / kBytesPerRefinedVertex;
+    for (int p : live) {
+      total += static_cast<int64_t>(work[p].mesh.new_vertices.size());
+      if (total > cap) {
+        work[p].mesh = work[p].dot;
+        report.patches[p].refined_vertices = 0;
+        report.patches[p].reason =
+            "not refined: the network's refined vertices would pass the "
+            "memory budget";
+      }
+    }
+    for (int round = 0;; ++round) {
+      std::vector<int32_t> owner, first;
+      const MeshData m = Assemble(g, work, true, &owner, &first);
+      std::set<int32_t> crossing;
+      int64_t pairs = 0;
+      s = CrossingPatches(m, owner, control, &crossing, &pairs);
+      if (!s.ok()) return fail(s);
+      if (pairs == 0) break;
+      for (int32_t p : crossing) {
+        if (work[p].mesh.new_vertices.empty()) continue;
+        work[p].mesh = work[p].dot;
+        report.patches[p].refined_vertices = 0;
+        report.patches[p].reason = "refinement undone: it made faces cross";
+      }
+      if (round == kResolveRounds) {
+        return fail(MakeStatus(StatusCode::kInternal,
+                               "DOT patches that were checked apart cross "
+                               "after refinement was undone"));
+      }
+    }
+    report.refine_ms = MsSince(t);
+  }
+
+  // Fairing of the whole network; patches whose fairing crosses anything
+  // are fixed at their refined vertices and the rest faired again.
+  std::vector<int32_t> owner, first;
+  MeshData mesh = Assemble(g, work, true, &owner, &first);
+  if (options.stage == FillStage::kFair &&
+      mesh.vertices.size() > g.vertices.size()) {
+    t = Clock::now();
+    std::vector<char> fixed(mesh.vertices.size(), 0);
+    const MeshData refined = mesh;
+    std::string why;
+    for (int round = 0; round <= kResolveRounds; ++round) {
+      bool faired = false;
+      why.clear();
+      s = FairMesh(&mesh, first_new, fixed, options.fairing_continuity, control,
+                   &faired, &why);
+      if (!s.ok()) return fail(s);
+      if (!faired) break;
+      std::set<int32_t> crossing;
+      int64_t pairs = 0;
+      s = CrossingPatches(mesh, owner, control, &crossing, &pairs);
+      if (!s.ok()) return fail(s);
+      if (pairs == 0) {
+        report.faired_whole = true;
+        break;
+      }
+      mesh = refined;
+      for (int32_t p : crossing) {
+        const int32_t end =
+            first[p] + static_cast<int32_t>(work[p].mesh.new_vertices.size());
+        for (int32_t v = first[p]; v < end; ++v) fixed[v] = 1;
+        report.patches[p].reason = "fairing undone: it made faces cross";
+      }
+      why =
+          "faces still crossed after " + std::to_string(round + 1) + " rounds";
+    }
+    if (report.faired_whole) {
+      for (int p : live) {
+        const int32_t end =
+            first[p] + static_cast<int32_t>(work[p].mesh.new_vertices.size());
+        report.patches[p].faired = end > first[p] && !fixed[first[p]];
+      }
+    } else {
+      mesh = refined;
+      report.notes.push_back("the network was faired patch by patch: " + why);
+      s = FairEachPatch(g, options, control, &work, &report.patches);
+      if (!s.ok()) return fail(s);
+      mesh = Assemble(g, work, true, &owner, &first);
+    }
+    report.fair_ms = MsSince(t);
+  }
+
+  // The contract, checked: no crossings, and which curves close.
+  t = Clock::now();
+  std::set<int32_t> crossing;
+  s = CrossingPatches(mesh, owner, control, &crossing,
+                      &report.intersecting_pairs);
+  if (!s.ok()) return fail(s);
+  if (report.intersecting_pairs != 0) {
+    return fail(MakeStatus(StatusCode::kInternal,
+                           "the surface crosses itself after every check (" +
+                               std::to_string(report.intersecting_pairs) +
+                               " pairs)"));
+  }
+  std::vector<int> uses(g.curves.size(), 0);
+  for (int p : live) {
+    for (const auto& loop : report.patches[p].loops) {
+      for (const CurveUse& u : loop) ++uses[u.curve];
+    }
+  }
+  std::vector<char> dangling(g.curves.size(), 0);
+  for (int32_t c : g.dangling) dangling[c] = 1;
+  report.closed = !live.empty();
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    if (!dangling[c] && uses[c] < 2) report.closed = false;
+    if (uses[c] > 2) ++report.non_manifold_curves;
+  }
+  if (report.closed) {
+    // A closed surface faces out (the embedding's sign is arbitrary).
+    double volume6 = 0;
+    for (const Triangle& tri : mesh.triangles) {
+      volume6 += Dot(mesh.vertices[tri[0]],
+                     Cross(mesh.vertices[tri[1]], mesh.vertices[tri[2]]));
+    }
+    if (volume6 < 0) {
+      for (Triangle& tri : mesh.triangles) std::swap(tri[1], tri[2]);
+      for (int p : live) {
+        for (Triangle& tri : work[p].mesh.faces) std::swap(tri[1], tri[2]);
+      }
+    }
+  }
+  report.check_ms = MsSince(t);
+  for (const PatchReport& r : report.patches) {
+    if (r.status == PatchStatus::kSurfaced) ++report.surfaced;
+    if (r.status == PatchStatus::kFailed) ++report.failed;
+  }
+  for (int p : live) {
+    report.patches[p].triangles =
+        static_cast<int32_t>(work[p].mesh.faces.size());
+  }
+  out.mesh = std::move(mesh);
+  report.total_ms = MsSince(t_start);
+  return out;
+}
+
+}  // namespace dot

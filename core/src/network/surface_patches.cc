@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// One patch of a network: DOT over its cycle, then Liepa refinement of the
+// patch alone (its curves are its border, which refinement never splits or
+// flips, so neighbouring patches still meet vertex for vertex).
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/refine.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include "dot/triangulate.h"
+#include "network/surface_steps.h"
+#include "util/run_control.h"
+
+namespace dot {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
+using VertexIndex = SurfaceMesh::Vertex_index;
+using FaceIndex = SurfaceMesh::Face_index;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Problem PatchProblem(const NetworkGraph& graph,
+                     const std::vector<std::vector<int32_t>>& loops,
+                     const std::vector<Vec3>& normals,
+                     const std::vector<std::pair<int32_t, int32_t>>& forbidden,
+                     const SurfaceOptions& options, std::vector<int32_t>* ids) {
+  Problem p;
+  std::map<int32_t, int32_t> position;
+  std::vector<int32_t> next;  // local: the next vertex of its loop
+  double perimeter = 0;
+  for (const auto& loop : loops) {
+    const auto first = static_cast<int32_t>(ids->size());
+    for (size_t k = 0; k < loop.size(); ++k) {
+      position[loop[k]] = static_cast<int32_t>(ids->size());
+      ids->push_back(loop[k]);
+      p.vertices.push_back(graph.vertices[loop[k]]);
+      if (!normals.empty()) p.normals.push_back(normals[loop[k]]);
+      next.push_back(k + 1 < loop.size() ? first + static_cast<int32_t>(k) + 1
+                                         : first);
+      perimeter += Distance(graph.vertices[loop[k]],
+                            graph.vertices[loop[(k + 1) % loop.size()]]);
+    }
+    if (loops.size() > 1) {
+      p.loop_sizes.push_back(static_cast<int32_t>(loop.size()));
+    }
+  }
+  for (const auto& [a, b] : forbidden) {
+    auto i = position.find(a), j = position.find(b);
+    if (i == position.end() || j == position.end()) continue;
+    if (next[i->second] == j->second || next[j->second] == i->second) continue;
+    p.forbidden_edges.emplace_back(i->second, j->second);
+  }
+  std::sort(p.forbidden_edges.begin(), p.forbidden_edges.end());
+  p.forbidden_edges.erase(
+      std::unique(p.forbidden_edges.begin(), p.forbidden_edges.end()),
+      p.forbidden_edges.end());
+  p.weights = options.weights;
+  // Without a normal at every vertex (the first pass, or a vertex whose
+  // patches all failed it) the patch is solved without the normal metric.
+  const bool all_normals =
+      !p.normals.empty() &&
+      std::all_of(p.normals.begin(), p.normals.end(),
+                  [](const Vec3& n) { return Norm(n) > 0; });
+  if (!all_normals) {
+    p.normals.clear();
+    p.weights[Metric::kNormalDeviation] = 0;
+    if (!HasNonZeroWeight(p.weights)) p.weights[Metric::kArea] = 1;
+  }
+  if (options.scale_free_weights && perimeter > 0) {
+    const double edge = perimeter / static_cast<double>(p.vertices.size());
+    p.weights[Metric::kArea] /= edge * edge;
+    p.weights[Metric::kPerimeter] /= edge;
+  }
+  return p;
+}
+
+// Thrown from inside CGAL's refinement (which has no way to stop).
+struct StopRefining {
+  Status status;  // cancel or deadline; OK when the vertex cap was reached
+};
+
+struct CountingVertexOut {
+  std::vector<VertexIndex>* out;
+  size_t cap;
+  RunTicker* ticker;
+  CountingVertexOut& operator*() { return *this; }
+  CountingVertexOut& operator++() { return *this; }
+  CountingVertexOut operator++(int) { return *this; }
+  CountingVertexOut& operator=(VertexIndex v) {
+    out->push_back(v);
+    if (out->size() > cap) throw StopRefining{OkStatus()};
+    if ((out->size() & 63) == 0 && !ticker->Poll()) {
+      throw StopRefining{ticker->status()};
+    }
+    return *this;
+  }
+};
+
+}  // namespace
+
+Status TriangulatePatch(
+    const NetworkGraph& graph, const std::vector<std::vector<int32_t>>& loops,
+    const std::vector<Vec3>& normals,
+    const std::vector<std::pair<int32_t, int32_t>>& forbidden,
+    const SurfaceOptions& options, const Control& control, PatchMesh* patch,
+    PatchReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<int32_t> ids;
+  const Problem problem =
+      PatchProblem(graph, loops, normals, forbidden, options, &ids);
+  Options o = options.triangulate;
+  o.protect_edges = false;   // a vertex on a curve would split it for one side
+  o.reorient_loops = false;  // loops run as the embedding orients them
+  if (o.space == SearchSpace::kAuto) o.space = SearchSpace::kDelaunay;
+  Result r = Triangulate(problem, o, control);
+  std::string reasons;
+  if (r.status.code == StatusCode::kNoTriangulation && loops.size() == 1 &&
+      o.space == SearchSpace::kDelaunay &&
+      static_cast<int>(ids.size()) <= o.delaunay_first_max_vertices) {
+    reasons = "Delaunay: " + r.status.message + "; ";
+    o.space = SearchSpace::kDelaunayFirst;
+    o.validate_output = true;
+    r = Triangulate(problem, o, control);
+    if (r.status.ok() && r.intersecting_pairs > 0) {
+      r.status =
+          MakeStatus(StatusCode::kNoTriangulation,
+                     "its surface over every triangle crosses itself (" +
+                         std::to_string(r.intersecting_pairs) + " pairs)");
+    }
+  }
+  report->triangulate_ms = MsSince(t0);
+  if (!r.status.ok()) {
+    if (r.status.code == StatusCode::kNoTriangulation) {
+      r.status.message = reasons + r.status.message;
+    }
+    return r.status;
+  }
+  report->space = r.space_used;
+  report->solver = r.solver;
+  report->cost = r.total_cost;
+  patch->new_vertices.clear();
+  patch->faces.clear();
+  for (const Triangle& t : r.triangles) {
+    patch->faces.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
+  }
+  return OkStatus();
+}
+
+Status FanPatch(const NetworkGraph& graph,
+                const std::vector<std::vector<int32_t>>& loops,
+                int32_t first_new, PatchMesh* patch) {
+  if (loops.size() != 1) {
+    return MakeStatus(StatusCode::kNoTriangulation,
+                      "no fan joins several loops");
+  }
+  const auto& loop = loops[0];
+  Vec3 sum;
+  for (int32_t v : loop) sum = sum + graph.vertices[v];
+  patch->new_vertices = {(1.0 / static_cast<double>(loop.size())) * sum};
+  patch->faces.clear();
+  for (size_t k = 0; k < loop.size(); ++k) {
+    patch->faces.push_back({loop[k], loop[(k + 1) % loop.size()], first_new});
+  }
+  return OkStatus();
+}
+
+Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
+                   const Control& control, int32_t first_new, PatchMesh* patch,
+                   PatchReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunTicker ticker(control, "refinement");
+  if (!ticker.Poll()) return ticker.status();
+
+  // Local numbering, moved to the origin and scaled to unit size (as
+  // FillHoles refines: no underflow at tiny coordinates).
+  std::map<int32_t, int32_t> local;
+  std::vector<int32_t> global;
+  for (const Triangle& t : patch->faces) {
+    for (int32_t v : t) {
+      if (local.emplace(v, static_cast<int32_t>(global.size())).second) {
+        global.push_back(v);
+      }
+    }
+  }
+  auto position = [&](int32_t id) -> const Vec3& {
+    return id < first_new ? graph.vertices[id]
+                          : patch->new_vertices[id - first_new];
+  };
+  Vec3 lo = position(global[0]), hi = lo;
+  for (int32_t id : global) {
+    const Vec3& p = position(id);
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const Vec3 center = 0.5 * (lo + hi);
+  const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double scale = size > 0 && std::isfinite(1.0 / size) ? 1.0 / size : 1;
+  SurfaceMesh sm;
+  for (int32_t id : global) {
+    const Vec3 p = scale * (position(id) - center);
+    sm.add_vertex(K::Point_3(p.x, p.y, p.z));
+  }
+  std::vector<FaceIndex> faces;
+  for (const Triangle& t : patch->faces) {
+    const FaceIndex f =
+        sm.add_face(VertexIndex(local[t[0]]), VertexIndex(local[t[1]]),
+                    VertexIndex(local[t[2]]));
+    if (f == SurfaceMesh::null_face()) {
+      report->reason = "not refined: the patch is not a manifold surface";
+      return OkStatus();
+    }
+    faces.push_back(f);
+  }
+  // Liepa's default density gives about 0.1 n^2 vertices in a round
+  // cycle of n; room for densities up to ~4x that.
+  const size_t rim = static_cast<size_t>(report->boundary_vertices);
+  const size_t cap = 2 * rim * rim + 1000;
+  std::vector<FaceIndex> new_faces;
+  std::vector<VertexIndex> new_vertices;
+  try {
+    PMP::refine(sm, faces, std::back_inserter(new_faces),
+                CountingVertexOut{&new_vertices, cap, &ticker},
+                CGAL::parameters::density_control_factor(options.density));
+  } catch (const StopRefining& stop) {
+    if (!stop.status.ok()) return stop.status;
+    report->refine_ms = MsSince(t0);
+    report->reason = "refinement stopped past " + std::to_string(cap) +
+                     " new vertices: kept the unrefined patch";
+    return OkStatus();
+  }
+  // Curve vertices keep their ids; the patch's own (a fan's centre, and
+  // what refinement added) are numbered anew.
+  std::vector<int32_t> id_of(sm.number_of_vertices());
+  PatchMesh refined;
+  for (VertexIndex v : sm.vertices()) {
+    if (v.idx() < global.size() && global[v.idx()] < first_new) {
+      id_of[v.idx()] = global[v.idx()];
+      continue;
+    }
+    id_of[v.idx()] =
+        first_new + static_cast<int32_t>(refined.new_vertices.size());
+    if (v.idx() < global.size()) {
+      refined.new_vertices.push_back(position(global[v.idx()]));
+    } else {
+      const auto& p = sm.point(v);
+      refined.new_vertices.push_back(center +
+                                     (1.0 / scale) * Vec3{p.x(), p.y(), p.z()});
+    }
+  }
+  for (FaceIndex f : sm.faces()) {
+    Triangle t;
+    int k = 0;
+    for (VertexIndex v : sm.vertices_around_face(sm.halfedge(f))) {
+      t[k++] = id_of[v.idx()];
+    }
+    refined.faces.push_back(t);
+  }
+  *patch = std::move(refined);
+  report->refined_vertices = static_cast<int32_t>(new_vertices.size());
+  report->refine_ms = MsSince(t0);
+  return OkStatus();
+}
+
+}  // namespace dot

@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// SurfaceNetwork end to end: every output checked independently (edge
+// manifold, orientation, curve edges present, exact intersections).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <map>
+#include <set>
+
+#include "dot/io.h"
+#include "dot/network.h"
+#include "dot/network_samples.h"
+#include "dot/validate.h"
+
+namespace dot {
+namespace {
+
+struct Checked {
+  int64_t border_edges = 0, non_manifold_edges = 0, misoriented_edges = 0;
+  int64_t missing_curve_edges = 0, intersecting_pairs = 0;
+  bool finite = true;
+};
+
+// The contract, from the mesh alone.
+Checked Check(const CurveNetwork& net, const SurfaceResult& r) {
+  Checked c;
+  std::map<std::pair<int32_t, int32_t>, int> directed;
+  for (const Triangle& t : r.mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  std::set<std::pair<int32_t, int32_t>> undirected;
+  for (const auto& [e, n] : directed) {
+    if (n > 1) ++c.misoriented_edges;
+    const auto rev = directed.find({e.second, e.first});
+    const int total = n + (rev == directed.end() ? 0 : rev->second);
+    if (e.first < e.second || rev == directed.end()) {
+      if (total == 1) ++c.border_edges;
+      if (total > 2) ++c.non_manifold_edges;
+    }
+    undirected.insert(
+        {std::min(e.first, e.second), std::max(e.first, e.second)});
+  }
+  for (const auto& line : net.polylines) {
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+      const int32_t a = r.vertex_of_input[line[k]];
+      const int32_t b = r.vertex_of_input[line[k + 1]];
+      if (!undirected.count({std::min(a, b), std::max(a, b)})) {
+        ++c.missing_curve_edges;
+      }
+    }
+  }
+  for (size_t i = 0; i < net.vertices.size(); ++i) {
+    const int32_t v = r.vertex_of_input[i];
+    if (v >= 0) {
+      EXPECT_TRUE(r.mesh.vertices[v] == net.vertices[i]) << i;
+    }
+  }
+  for (const Vec3& p : r.mesh.vertices) c.finite = c.finite && IsFinite(p);
+  c.intersecting_pairs =
+      CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles);
+  return c;
+}
+
+void ExpectClosedAndValid(const CurveNetwork& net, const SurfaceResult& r) {
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  const Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 0);
+  EXPECT_EQ(c.non_manifold_edges, 0);
+  EXPECT_EQ(c.misoriented_edges, 0);
+  EXPECT_EQ(c.missing_curve_edges, 0);
+  EXPECT_EQ(c.intersecting_pairs, 0);
+  EXPECT_TRUE(c.finite);
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_EQ(r.report.failed, 0);
+  EXPECT_EQ(r.report.intersecting_pairs, 0);
+  EXPECT_EQ(ShapeOf(r.mesh).pieces, 1);
+}
+
+TEST(SurfaceNetworkTest, CubeEdgesBecomeAClosedBoxAtEveryStage) {
+  const CurveNetwork net = CubeNetwork(6);
+  for (FillStage stage :
+       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
+    SCOPED_TRACE(std::string(FillStageName(stage)));
+    SurfaceOptions o;
+    o.stage = stage;
+    const SurfaceResult r = SurfaceNetwork(net, o);
+    ExpectClosedAndValid(net, r);
+    EXPECT_EQ(r.report.curves, 12);
+    EXPECT_EQ(r.report.junctions, 8);
+    EXPECT_EQ(r.report.patches.size(), 6u);
+    EXPECT_EQ(ShapeOf(r.mesh).euler, 2);
+    if (stage != FillStage::kTriangulate) {
+      EXPECT_GT(r.mesh.vertices.size(), 8u + 12u * 5u);
+    }
+    if (stage == FillStage::kFair) {
+      EXPECT_TRUE(r.report.faired_whole);
+    }
+  }
+}
+
+// The rims of patches cut from real meshes (genus 0 and 3), every rim
+// vertex kept or every third: the surface is closed, valid, and near the
+// mesh it was cut from (the figures are in the README, from dot-bench).
+TEST(SurfaceNetworkTest, CutMeshNetworksComeBackNearTheOriginal) {
+  struct Case {
+    const char* mesh;
+    int patches, keep_every;
+    double max_relative_distance;
+  };
+  // Measured: 0.031, 0.032 and 0.023 of the diagonal (detail smaller than
+  // a patch, such as fingers, is not in the curves).
+  for (const Case& k :
+       {Case{"homer.off", 200, 1, 0.04}, Case{"homer.off", 200, 3, 0.04},
+        Case{"elephant.off", 200, 1, 0.03}}) {
+    SCOPED_TRACE(std::string(k.mesh) + " keep every " +
+                 std::to_string(k.keep_every));
+    MeshData mesh;
+    ASSERT_TRUE(
+        ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + k.mesh, &mesh).ok());
+    CutNetwork cut;
+    ASSERT_TRUE(CutIntoPatches(mesh, k.patches, k.keep_every, 2, &cut).ok());
+    const SurfaceResult r = SurfaceNetwork(cut.network);
+    ExpectClosedAndValid(cut.network, r);
+    EXPECT_EQ(ShapeOf(r.mesh).euler, ShapeOf(mesh).euler);
+    double distance = 0;
+    ASSERT_TRUE(HausdorffDistance(r.mesh, mesh, 1e-4, &distance).ok());
+    Vec3 lo = mesh.vertices[0], hi = lo;
+    for (const Vec3& p : mesh.vertices) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    EXPECT_LT(distance / Distance(lo, hi), k.max_relative_distance);
+  }
+}
+
+// Two boxes sharing a wall: the wall's four curves border three patches
+// each. Cycles given by the user (the faces' corners).
+TEST(SurfaceNetworkTest, NonManifoldNetworkFromUserCycles) {
+  PolygonSoup soup;
+  for (double x : {0.0, 0.5, 1.0}) {
+    for (int k = 0; k < 4; ++k) {
+      soup.vertices.push_back({x, static_cast<double>(k == 1 || k == 2),
+                               static_cast<double>(k >= 2)});
+    }
+  }
+  // Vertex 4 * i + k: plane x = 0, 0.5, 1; k = 0: (y, z) = (0, 0), 1: (1,
+  // 0), 2: (1, 1), 3: (0, 1).
+  auto quad = [&](int32_t a, int32_t b, int32_t c, int32_t d) {
+    soup.faces.push_back({a, b, c, d});
+  };
+  quad(0, 3, 2, 1);              // x = 0
+  quad(8, 9, 10, 11);            // x = 1
+  quad(4, 5, 6, 7);              // the wall
+  for (int i = 0; i < 2; ++i) {  // the halves of the four sides
+    const int32_t l = 4 * i, r = 4 * (i + 1);
+    for (int k = 0; k < 4; ++k) {
+      quad(l + k, r + k, r + (k + 1) % 4, l + (k + 1) % 4);
+    }
+  }
+  const CurveNetwork net = FaceEdgeNetwork(soup, 4);
+  SurfaceOptions o;
+  for (FaceView f : soup.faces) o.cycles.push_back({{f.begin(), f.end()}});
+  const SurfaceResult r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.surfaced, 11);
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_EQ(r.report.non_manifold_curves, 4);
+  const Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 0);
+  EXPECT_EQ(c.missing_curve_edges, 0);
+  EXPECT_EQ(c.intersecting_pairs, 0);
+  EXPECT_GT(c.non_manifold_edges, 0);  // along the wall's rim, by design
+  EXPECT_TRUE(c.finite);
+}
+
+TEST(SurfaceNetworkTest, LoneRimsAreDisksAndDanglingCurvesAreReported) {
+  CurveNetwork net = CylinderNetwork(24, false);
+  // A tail from a rim vertex: it bounds nothing.
+  net.vertices.push_back({2, 0, 0});
+  net.polylines.push_back({0, static_cast<int32_t>(net.vertices.size() - 1)});
+  const SurfaceResult r = SurfaceNetwork(net);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.patches.size(), 2u);  // one disk per rim, not two
+  EXPECT_EQ(r.report.dangling.size(), 1u);
+  EXPECT_EQ(r.report.surfaced, 2);
+  EXPECT_EQ(ShapeOf(r.mesh).pieces, 2);
+  EXPECT_EQ(CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles), 0);
+}
+
+TEST(SurfaceNetworkTest, UserCycleWithTwoLoopsIsATube) {
+  const CurveNetwork net = CylinderNetwork(24, false);
+  SurfaceOptions o;
+  std::vector<int32_t> bottom, top;
+  for (int32_t k = 0; k < 24; ++k) {
+    bottom.push_back(k);
+    top.push_back(47 - k);  // against the bottom, as a tube's rims run
+  }
+  o.cycles = {{bottom, top}};
+  const SurfaceResult r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  ASSERT_EQ(r.report.surfaced, 1) << r.report.patches[0].reason;
+  const MeshShape shape = ShapeOf(r.mesh);
+  EXPECT_EQ(shape.pieces, 1);
+  EXPECT_EQ(shape.euler, 0);  // an annulus
+  const Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 48);
+  EXPECT_EQ(c.non_manifold_edges, 0);
+  EXPECT_EQ(c.misoriented_edges, 0);
+  EXPECT_EQ(c.intersecting_pairs, 0);
+}
+
+TEST(SurfaceNetworkTest, SkipLongestLeavesAnOpenSheet) {
+  // A cube's six squares are equally long: skip_longest leaves out the
+  // first, and the other five make an open box.
+  const CurveNetwork net = CubeNetwork(3);
+  SurfaceOptions o;
+  o.skip_longest = true;
+  const SurfaceResult r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.surfaced, 5);
+  EXPECT_FALSE(r.report.closed);
+  const Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 12);  // the open square's rim
+  EXPECT_EQ(c.intersecting_pairs, 0);
+}
+
+TEST(SurfaceNetworkTest, RefusesBadNetworksAndOptions) {
+  CurveNetwork net = CubeNetwork(2);
+  net.polylines.push_back({0, 99});
+  SurfaceResult r = SurfaceNetwork(net);
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status.message.find("vertex 100"), std::string::npos);
+  SurfaceOptions o;
+  o.density = 0;
+  r = SurfaceNetwork(CubeNetwork(2), o);
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  CurveNetwork tree;  // a path bounds nothing
+  tree.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 1, 0}};
+  tree.polylines = {{0, 1, 2}};
+  r = SurfaceNetwork(tree);
+  EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status.message.find("bounds no patch"), std::string::npos);
+}
+
+TEST(SurfaceNetworkTest, StopsWhenCancelled) {
+  std::atomic<bool> cancel{true};
+  Control control;
+  control.cancel = &cancel;
+  const SurfaceResult r = SurfaceNetwork(CubeNetwork(8), {}, control);
+  EXPECT_EQ(r.status.code, StatusCode::kCancelled);
+  EXPECT_TRUE(r.mesh.triangles.empty());
+}
+
+}  // namespace
+}  // namespace dot
