@@ -5,6 +5,7 @@
 // the removed patches).
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "commands.h"
@@ -33,7 +34,8 @@ void WritePolygonOut(const PolygonData& polygon, const std::string& out,
 void AddGenerateCommand(CLI::App& app, Context* ctx) {
   CLI::App* gen = app.add_subcommand(
       "generate",
-      "Write test polygons: the paper's curves, loop pairs or mesh holes.");
+      "Write test data: the paper's curves, loop pairs, mesh holes or curve "
+      "networks.");
   gen->require_subcommand(1);
 
   struct CurveFlags {
@@ -194,6 +196,70 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
                         : std::string())
                 << " -> " << h->out << " (removed patches: " << removed_path
                 << ")\n";
+    }
+  });
+  struct NetworkFlags {
+    std::string source, out;
+    int segments = 4, patches = 100, keep_every = 1;
+    uint64_t seed = 1;
+  };
+  auto nf = std::make_shared<NetworkFlags>();
+  CLI::App* network = gen->add_subcommand(
+      "network",
+      "Write a curve network (OBJ polylines) for surface: 'cube' (its 12 "
+      "edges), 'cylinder' (two rims and a seam), or the rims of disk-shaped "
+      "patches cut from a closed MESH file (its surface is the reference)");
+  network->add_option("source", nf->source, "cube, cylinder, or a mesh file")
+      ->required();
+  network
+      ->add_option("-s,--segments", nf->segments,
+                   "cube: pieces per edge; cylinder: points per rim")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  network->add_option("-p,--patches", nf->patches, "mesh: patches to cut")
+      ->check(CLI::Range(2, 1000000))
+      ->capture_default_str();
+  network
+      ->add_option("--keep-every", nf->keep_every,
+                   "mesh: keep the junctions and every k-th rim vertex")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  network->add_option("--seed", nf->seed, "random seed")->capture_default_str();
+  network->add_option("-o,--output", nf->out, "network .obj (- for stdout)")
+      ->required();
+  network->callback([nf, ctx] {
+    CurveNetwork net;
+    Status s = OkStatus();
+    if (nf->source == "cube") {
+      net = CubeNetwork(nf->segments);
+    } else if (nf->source == "cylinder") {
+      net = CylinderNetwork(std::max(3, nf->segments), /*seam=*/true);
+    } else {
+      MeshData mesh;
+      s = ReadMeshFile(nf->source, &mesh);
+      CutNetwork cut;
+      if (s.ok()) {
+        s = CutIntoPatches(mesh, nf->patches, nf->keep_every, nf->seed, &cut);
+      }
+      net = std::move(cut.network);
+    }
+    if (s.ok()) {
+      if (nf->out == "-") {
+        s = WriteNetworkObj(std::cout, net);
+      } else {
+        std::ofstream out(nf->out);
+        s = out ? WriteNetworkObj(out, net)
+                : InvalidArgument("cannot write '" + nf->out + "'");
+      }
+    }
+    if (!s.ok()) {
+      std::cerr << "dotctl: " << s.message << "\n";
+      ctx->exit_code = kExitFailed;
+      return;
+    }
+    if (!ctx->quiet && nf->out != "-") {
+      std::cerr << net.polylines.size() << " polylines, " << net.vertices.size()
+                << " vertices -> " << nf->out << "\n";
     }
   });
 }

@@ -21,6 +21,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx);  // info, source
 void AddLoadCommand(CLI::App& app, Context* ctx);
 void AddGenerateCommand(CLI::App& app, Context* ctx);
 void AddFillHolesCommand(CLI::App& app, Context* ctx);
+void AddSurfaceCommand(CLI::App& app, Context* ctx);
 
 }  // namespace dot::client
 

@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
   dot::client::AddLoadCommand(app, &ctx);
   dot::client::AddGenerateCommand(app, &ctx);
   dot::client::AddFillHolesCommand(app, &ctx);
+  dot::client::AddSurfaceCommand(app, &ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

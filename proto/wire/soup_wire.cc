@@ -120,12 +120,16 @@ Status SoupChunkReader::Add(const v1::MeshChunk& c, const std::string& where) {
     }
   } else {
     size_t total = 0;
+    const uint32_t least = polylines_ ? 2 : 3;
     for (uint32_t k : c.face_sizes()) {
-      if (k < 3) {
-        return InvalidArgument(where + " has a face of " + std::to_string(k) +
-                               " corners; a face needs at least 3");
+      if (k < least) {
+        return InvalidArgument(
+            where + (polylines_ ? " has a polyline of " : " has a face of ") +
+            std::to_string(k) +
+            (polylines_ ? " points; a polyline needs at least 2"
+                        : " corners; a face needs at least 3"));
       }
-      if (k > kMaxPolygonCorners) {
+      if (!polylines_ && k > kMaxPolygonCorners) {
         return InvalidArgument(where + " has a face of " + std::to_string(k) +
                                " corners; at most " +
                                std::to_string(kMaxPolygonCorners) +
@@ -165,8 +169,9 @@ Status SoupChunkReader::Add(const v1::MeshChunk& c, const std::string& where) {
       const uint32_t v = c.triangles(next++);
       if (v >= soup_.vertices.size()) {
         return InvalidArgument(
-            "face " + std::to_string(soup_.faces.size()) +
-            " has vertex index " + std::to_string(v) + ", but only " +
+            (polylines_ ? "polyline " : "face ") +
+            std::to_string(soup_.faces.size()) + " has vertex index " +
+            std::to_string(v) + ", but only " +
             std::to_string(soup_.vertices.size()) + " vertices were sent");
       }
       face.push_back(static_cast<int32_t>(v));

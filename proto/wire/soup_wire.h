@@ -38,10 +38,14 @@ class SoupChunkWriter {
 // do not add up, more than `max_vertices` vertices or `max_faces` faces (or
 // 3 x `max_faces` corners), polygons of more than 1000 corners, channels
 // that are not well formed (see CheckAttributes) or more than 16 of them.
+// With `polylines`, the faces are the polylines of a curve network: at
+// least 2 points each, and as many as the corner limit allows.
 class SoupChunkReader {
  public:
-  SoupChunkReader(size_t max_vertices, size_t max_faces)
-      : max_vertices_(max_vertices), max_faces_(max_faces) {}
+  SoupChunkReader(size_t max_vertices, size_t max_faces, bool polylines = false)
+      : max_vertices_(max_vertices),
+        max_faces_(max_faces),
+        polylines_(polylines) {}
   // `where` names the slice in errors ("message 3").
   Status Add(const v1::MeshChunk& chunk, const std::string& where);
   // The soup, its channels checked; indices are checked by the core.
@@ -58,6 +62,7 @@ class SoupChunkReader {
   static constexpr uint32_t kMaxPolygonCorners = 1000;
   static constexpr size_t kMaxChannels = 16, kMaxNameBytes = 64;
   size_t max_vertices_, max_faces_;
+  bool polylines_;
   size_t corners_ = 0;
   int64_t attribute_bytes_ = 0;
   PolygonSoup soup_;

@@ -14,15 +14,47 @@ FillUpload::FillUpload(JobRunner* runner)
 
 FillUpload::~FillUpload() { runner_->ReleaseFillMemory(charged_); }
 
-grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
-  // A slow upload is bound by the same deadline, drain and cancel as the
-  // fill itself.
+grpc::Status UploadMayGoOn(Job& job, const std::string& input) {
   if (job.cancel) return StoppedStatus(job.stop);
   if (Clock::now() >= job.deadline) {
     job.StopAtDeadline();
     return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "the mesh did not arrive within the time limit"};
+            "the " + input + " did not arrive within the time limit"};
   }
+  return grpc::Status::OK;
+}
+
+grpc::Status ChargeUpload(JobRunner* runner, int64_t bytes,
+                          const std::string& method, const std::string& input,
+                          int64_t* charged) {
+  const int64_t budget = runner->options().fill_memory_bytes;
+  if (bytes > budget) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "this " + input + " needs about " + std::to_string(bytes >> 20) +
+                " MiB, more than the server's memory for " + method +
+                " calls (" + std::to_string(budget >> 20) +
+                " MiB); send it in parts or ask for a larger "
+                "--fill-memory-mb"};
+  }
+  if (bytes > *charged) {
+    if (!runner->ChargeFillMemory(bytes - *charged)) {
+      return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+              "the server's memory for " + method + " calls (" +
+                  std::to_string(budget >> 20) +
+                  " MiB) is taken by other calls; this " + input +
+                  " needs about " + std::to_string(bytes >> 20) +
+                  " MiB so far; retry later"};
+    }
+    *charged = bytes;
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
+  // A slow upload is bound by the same deadline, drain and cancel as the
+  // fill itself.
+  grpc::Status go_on = UploadMayGoOn(job, "mesh");
+  if (!go_on.ok()) return go_on;
   const Status s = reader_.Add(m);
   if (!s.ok()) return wire::ToGrpcStatus(s);
   // Attribute channels are held about three times as sent (upload,
@@ -33,27 +65,7 @@ grpc::Status FillUpload::Add(const v1::FillHolesRequest& m, Job& job) {
                       static_cast<int64_t>(reader_.faces())) +
       3 * reader_.attribute_bytes() +
       40 * static_cast<int64_t>(reader_.channels() * reader_.corners());
-  const int64_t budget = runner_->options().fill_memory_bytes;
-  if (bytes > budget) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "this mesh needs about " + std::to_string(bytes >> 20) +
-                " MiB to fill, more than the server's memory for FillHoles "
-                "calls (" +
-                std::to_string(budget >> 20) +
-                " MiB); send it in parts or ask for a larger "
-                "--fill-memory-mb"};
-  }
-  if (bytes > charged_) {
-    if (!runner_->ChargeFillMemory(bytes - charged_)) {
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-              "the server's memory for FillHoles calls (" +
-                  std::to_string(budget >> 20) +
-                  " MiB) is taken by other calls; this mesh needs about " +
-                  std::to_string(bytes >> 20) + " MiB so far; retry later"};
-    }
-    charged_ = bytes;
-  }
-  return grpc::Status::OK;
+  return ChargeUpload(runner_, bytes, "FillHoles", "mesh", &charged_);
 }
 
 }  // namespace dot::server

@@ -11,12 +11,27 @@
 #include <grpcpp/grpcpp.h>
 
 #include <cstdint>
+#include <string>
 
 #include "dot/v1/triangulation.pb.h"
 #include "rpc/job.h"
 #include "wire/fill_wire.h"
 
 namespace dot::server {
+
+// The checks every message of an upload passes first: the job not stopped
+// and its deadline not passed (a slow upload is bound as the work is).
+// `input` names what arrives ("mesh").
+grpc::Status UploadMayGoOn(Job& job, const std::string& input);
+
+// Charges `bytes` (what the call will hold, by what it has sent so far)
+// against the server's memory for uploads (ServiceOptions::
+// fill_memory_bytes), on top of `*charged`, which it raises; not OK names
+// the need and the limit. `method` and `input` name the call ("FillHoles",
+// "mesh") in the message.
+grpc::Status ChargeUpload(JobRunner* runner, int64_t bytes,
+                          const std::string& method, const std::string& input,
+                          int64_t* charged);
 
 class FillUpload {
  public:

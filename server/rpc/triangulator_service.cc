@@ -7,6 +7,7 @@
 #include "rpc/fill_holes_reactor.h"
 #include "rpc/raw_message.h"
 #include "rpc/source_reactor.h"
+#include "rpc/surface_network_reactor.h"
 #include "rpc/triangulate_reactor.h"
 
 #ifndef DOT_VERSION
@@ -38,6 +39,11 @@ TriangulatorService::TriangulateBatch(grpc::CallbackServerContext* context) {
 grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>*
 TriangulatorService::FillHoles(grpc::CallbackServerContext* context) {
   return new FillHolesReactor(runner_, context);
+}
+
+grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>*
+TriangulatorService::SurfaceNetwork(grpc::CallbackServerContext* context) {
+  return new SurfaceNetworkReactor(runner_, context);
 }
 
 grpc::ServerWriteReactor<grpc::ByteBuffer>* TriangulatorService::GetSource(

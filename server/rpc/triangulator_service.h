@@ -21,7 +21,8 @@ using TriangulatorCallbackBase =
             v1::Triangulator::WithRawCallbackMethod_GetServerInfo<
                 v1::Triangulator::WithRawCallbackMethod_GetSource<
                     v1::Triangulator::WithRawCallbackMethod_FillHoles<
-                        v1::Triangulator::Service>>>>>;
+                        v1::Triangulator::WithRawCallbackMethod_SurfaceNetwork<
+                            v1::Triangulator::Service>>>>>>;
 
 class TriangulatorService final : public TriangulatorCallbackBase {
  public:
@@ -38,6 +39,8 @@ class TriangulatorService final : public TriangulatorCallbackBase {
                                           const grpc::ByteBuffer* request,
                                           grpc::ByteBuffer* response) override;
   grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* FillHoles(
+      grpc::CallbackServerContext* context) override;
+  grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>* SurfaceNetwork(
       grpc::CallbackServerContext* context) override;
   grpc::ServerWriteReactor<grpc::ByteBuffer>* GetSource(
       grpc::CallbackServerContext* context,

@@ -16,6 +16,8 @@
 #include "dot/mesh.h"            // IWYU pragma: export
 #include "dot/mesh_repair.h"     // IWYU pragma: export
 #include "dot/metrics.h"         // IWYU pragma: export
+#include "dot/network.h"         // IWYU pragma: export
+#include "dot/network_samples.h"  // IWYU pragma: export
 #include "dot/problem.h"         // IWYU pragma: export
 #include "dot/space_cache.h"     // IWYU pragma: export
 #include "dot/status.h"          // IWYU pragma: export

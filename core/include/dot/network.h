@@ -16,9 +16,10 @@
 //   CyclesFromVertices the cycles a user gives as vertex lists;
 //   SurfaceNetwork     all of the above, then the surface: one mesh.
 //
-// The contract: the mesh's first vertices are the network's (welded, in
-// input order: SurfaceResult::vertex_of_input), at their exact
-// coordinates; every curve edge of a surfaced patch is a mesh edge; the
+// The contract: the mesh's first vertices are the network's, every one in
+// its order at its exact coordinates (a point welded to an earlier copy is
+// left unused: SurfaceResult::vertex_of_input), then the new ones; every
+// curve edge of a surfaced patch is a mesh edge; the
 // mesh is edge-manifold, consistently oriented and intersection-free
 // (checked with exact predicates). A patch that cannot be surfaced without
 // breaking that is left out and reported, never included.
@@ -179,7 +180,8 @@ std::string_view PatchStatusName(PatchStatus s);  // "surfaced", ...
 
 struct PatchReport {
   int32_t id = 0;
-  std::vector<std::vector<CurveUse>> loops;  // its cycle
+  std::vector<std::vector<CurveUse>> loops;         // its cycle
+  std::vector<std::vector<int32_t>> loop_vertices;  // input ids, per loop
   int32_t boundary_vertices = 0;
   PatchStatus status = PatchStatus::kSkipped;
   std::string reason;  // why failed or skipped; what was undone
@@ -198,6 +200,8 @@ struct PatchReport {
 
 struct SurfaceReport {
   int32_t curves = 0, junctions = 0, merged_vertices = 0;
+  // Per curve (as CurveUse numbers them), its vertices in input ids.
+  std::vector<std::vector<int32_t>> curve_vertices;
   std::vector<int32_t> dangling;  // curve ids
   std::vector<std::string> notes;
   std::vector<PatchReport> patches;  // one per cycle
@@ -220,9 +224,11 @@ using SurfaceProgressFn = std::function<void(int patches_done, int total)>;
 
 struct SurfaceResult {
   Status status;
-  MeshData mesh;  // graph vertices first, then new ones
+  MeshData mesh;  // the network's vertices first, then new ones
   SurfaceReport report;
-  std::vector<int32_t> vertex_of_input;  // input id -> mesh vertex, -1
+  // Per input vertex: the mesh vertex its faces use (itself, or the
+  // earlier copy it was welded to); -1: on no polyline.
+  std::vector<int32_t> vertex_of_input;
 };
 
 // Never throws. Not OK: the network, the options, or a stop (cancel,

@@ -288,8 +288,15 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
   NetworkGraph g;
   s = BuildNetworkGraph(network, &g, control);
   if (!s.ok()) return fail(s);
-  out.vertex_of_input = g.vertex_of_input;
+  for (int32_t v : g.vertex_of_input) {
+    out.vertex_of_input.push_back(v < 0 ? -1 : g.input_of_vertex[v]);
+  }
   report.curves = static_cast<int32_t>(g.curves.size());
+  for (const NetworkCurve& c : g.curves) {
+    std::vector<int32_t> ids;
+    for (int32_t v : c.vertices) ids.push_back(g.input_of_vertex[v]);
+    report.curve_vertices.push_back(std::move(ids));
+  }
   report.merged_vertices = g.merged_vertices;
   report.dangling = g.dangling;
   {
@@ -333,6 +340,9 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
     for (const auto& loop : cycles[p].loops) {
       w.loops.push_back(LoopVertices(g, loop));
       const auto& vs = w.loops.back();
+      r.loop_vertices.emplace_back();
+      for (int32_t v : vs)
+        r.loop_vertices.back().push_back(g.input_of_vertex[v]);
       r.boundary_vertices += static_cast<int32_t>(vs.size());
       for (size_t k = 0; k < vs.size(); ++k) {
         w.boundary.insert(Key(vs[k], vs[(k + 1) % vs.size()]));
@@ -654,7 +664,18 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
     report.patches[p].triangles =
         static_cast<int32_t>(work[p].mesh.faces.size());
   }
-  out.mesh = std::move(mesh);
+  // In the input's numbering: its vertices, every one, then the new ones.
+  const auto inputs = static_cast<int32_t>(network.vertices.size());
+  out.mesh.vertices = network.vertices;
+  out.mesh.vertices.insert(out.mesh.vertices.end(),
+                           mesh.vertices.begin() + first_new,
+                           mesh.vertices.end());
+  out.mesh.triangles = std::move(mesh.triangles);
+  for (Triangle& tri : out.mesh.triangles) {
+    for (int32_t& v : tri) {
+      v = v < first_new ? g.input_of_vertex[v] : inputs + (v - first_new);
+    }
+  }
   report.total_ms = MsSince(t_start);
   return out;
 }
