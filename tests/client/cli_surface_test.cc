@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// dotctl surface and generate network end to end: over a real server and
+// locally (the same bytes), stdin and stdout, --cycles, the JSON report,
+// exit codes, errors naming the line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "dot/dot.h"
+#include "fixtures/dotctl_run.h"
+#include "fixtures/service_fixture.h"
+
+namespace dot {
+namespace {
+
+using testing::Dotctl;
+
+class SurfaceCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    server_ = testing::StartServer(testing::LoopbackConfig());
+    dir_ = testing::TempDir("surface-cli");
+    flag_ = "--server " + server_.address + " ";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Path(const std::string& name) const {
+    return (dir_ / name).string();
+  }
+  static std::string Read(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  testing::RunningServer server_;
+  std::filesystem::path dir_;
+  std::string flag_;
+};
+
+TEST_F(SurfaceCliTest, CutMeshNetworkLocalAndRemoteAgree) {
+  auto r = Dotctl("generate network " + std::string(DOT_MESH_DIR) +
+                  "/homer.off -p 60 --keep-every 2 -o " + Path("net.obj"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  r = Dotctl("surface --local " + Path("net.obj") + " -o " + Path("local.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("closed"), std::string::npos) << r.out;
+  r = Dotctl(flag_ + "surface " + Path("net.obj") + " -o " +
+             Path("remote.ply"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(Read(Path("local.ply")), Read(Path("remote.ply")));
+  MeshData surface;
+  ASSERT_TRUE(ReadMeshFile(Path("remote.ply"), &surface).ok());
+  EXPECT_EQ(ShapeOf(surface).euler, 2);
+  EXPECT_EQ(CountIntersectingPairs(surface.vertices, surface.triangles), 0);
+}
+
+TEST_F(SurfaceCliTest, JsonStagesStdinAndCycles) {
+  ASSERT_EQ(Dotctl("generate network cube -s 3 -o " + Path("cube.obj")).code,
+            0);
+  auto r = Dotctl(flag_ + "surface " + Path("cube.obj") + " -o " +
+                  Path("cube.off") + " --stage triangulate --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"ok\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":6"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
+  // stdin to stdout.
+  r = testing::RunShell("cat " + Path("cube.obj") + " | " +
+                        std::string(DOT_DOTCTL_PATH) +
+                        " surface --local - --output-format off -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("OFF", 0), 0u) << r.out.substr(0, 80);
+  // Two faces of the cube given by their corners (OBJ numbering): an open
+  // surface, exit 0.
+  {
+    std::ofstream cycles(Path("cycles.txt"));
+    cycles << "# z = 0 and y = 0\n1 2 4 3\n1 5 6 2\n";
+  }
+  r = Dotctl("surface --local " + Path("cube.obj") + " --cycles " +
+             Path("cycles.txt") + " -o " + Path("two.off") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"closed\":false"), std::string::npos) << r.out;
+}
+
+TEST_F(SurfaceCliTest, BadInputsAreNamed) {
+  {
+    std::ofstream bad(Path("bad.obj"));
+    bad << "v 0 0 0\nv 1 0 0\nl 1 7\n";
+  }
+  auto r =
+      Dotctl("surface --local " + Path("bad.obj") + " -o " + Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("line 3"), std::string::npos) << r.out;
+  {
+    std::ofstream cycles(Path("cycles.txt"));
+    cycles << "1 2 x\n";
+  }
+  ASSERT_EQ(Dotctl("generate network cube -o " + Path("cube.obj")).code, 0);
+  r = Dotctl(flag_ + "surface " + Path("cube.obj") + " --cycles " +
+             Path("cycles.txt") + " -o " + Path("x.ply") + " --json");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"input_error\""), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("'x'"), std::string::npos) << r.out;
+  // A cycle that is not one: the server names it.
+  {
+    std::ofstream cycles(Path("cycles.txt"));
+    cycles << "1 8 4\n";
+  }
+  r = Dotctl(flag_ + "surface " + Path("cube.obj") + " --cycles " +
+             Path("cycles.txt") + " -o " + Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("no curve joins vertices 1 and 8"), std::string::npos)
+      << r.out;
+}
+
+}  // namespace
+}  // namespace dot
