@@ -275,7 +275,8 @@ void AddSurfaceCommand(CLI::App& app, Context* ctx) {
                 "leave the longest found cycle open (an open sheet's rim)")
       ->group("Patches");
   const std::string weights =
-      "Metric weights (default: --squared-dihedral 1 --normal 0.25 --area "
+      "Metric weights (default: --squared-dihedral 1 --normal-deviation 0.25 "
+      "--area "
       "0.01)";
   AddWeightFlags(cmd, &f->weights, weights,
                  {"area, per squared mean cycle edge length",

@@ -45,9 +45,10 @@ int main(int argc, char** argv) {
   app.add_option(
          "--only", only,
          "run only these: curves, holes, gk, optimality, service, fill, "
-         "scan, loops, islands")
+         "scan, loops, islands, network")
       ->check(CLI::IsMember({"curves", "holes", "gk", "optimality", "service",
-                             "fill", "scan", "loops", "islands"}));
+                             "fill", "scan", "loops", "islands",
+                             "network"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
   if (wanted("scan")) invalid += dot::bench::RunScan(config, body);
   if (wanted("loops")) invalid += dot::bench::RunLoops(config, body);
   if (wanted("islands")) invalid += dot::bench::RunIslands(config, body);
+  if (wanted("network")) invalid += dot::bench::RunNetwork(config, body);
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count() /

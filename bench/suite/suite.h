@@ -46,6 +46,9 @@ int RunScan(const Config& config, std::ostream& report);
 // failed or did not validate.
 int RunLoops(const Config& config, std::ostream& report);
 int RunIslands(const Config& config, std::ostream& report);
+// Curve networks into surfaces (fig_network.cc); returns the outputs that
+// failed or did not validate.
+int RunNetwork(const Config& config, std::ostream& report);
 
 // Formatting shared by the figures.
 std::string Fixed(double v, int digits = 1);  // "-" for NaN
