@@ -47,8 +47,7 @@ int main(int argc, char** argv) {
          "run only these: curves, holes, gk, optimality, service, fill, "
          "scan, loops, islands, network")
       ->check(CLI::IsMember({"curves", "holes", "gk", "optimality", "service",
-                             "fill", "scan", "loops", "islands",
-                             "network"}));
+                             "fill", "scan", "loops", "islands", "network"}));
   CLI11_PARSE(app, argc, argv);
 
   std::filesystem::create_directories(config.out_dir);

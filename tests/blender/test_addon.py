@@ -235,7 +235,7 @@ def protected_polygon():
 
 def test_operators_are_registered_with_one_undo_step():
     for idname in ("dot_fill_loops", "dot_triangulate_loops", "dot_fill_holes",
-                   "dot_triangulate_curve"):
+                   "dot_triangulate_curve", "dot_surface_curves"):
         cls = getattr(bpy.types, "MESH_OT_" + idname)
         assert {'REGISTER', 'UNDO'} <= set(cls.bl_options), idname
         assert hasattr(bpy.ops.mesh, idname)
@@ -803,6 +803,111 @@ def test_triangulate_curve_bezier_poly_and_polyline():
         == {'FINISHED'}
     v, f = check_mesh(bpy.context.active_object, boundary_edges=50)
     assert (v, f) == (50, 46)
+
+
+CUBE_CORNERS = [(x, y, z) for x in (0.0, 1.0) for y in (0.0, 1.0)
+                for z in (0.0, 1.0)]
+
+
+def cube_edges_curve(name, segments=4, jitter=0.0):
+    """A curve object whose splines are the unit cube's 12 edges, each a
+    POLY spline of `segments` pieces with its own end points; `jitter`
+    moves every other spline's first point off its corner by that much."""
+    data = bpy.data.curves.new(name, 'CURVE')
+    data.dimensions = '3D'
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8)
+             if sum(abs(p - q) for p, q in
+                    zip(CUBE_CORNERS[a], CUBE_CORNERS[b])) == 1]
+    for k, (a, b) in enumerate(edges):
+        spline = data.splines.new('POLY')
+        spline.points.add(segments)  # segments + 1 points
+        for i, point in enumerate(spline.points):
+            t = i / segments
+            co = [(1 - t) * u + t * w
+                  for u, w in zip(CUBE_CORNERS[a], CUBE_CORNERS[b])]
+            if i == 0 and k % 2:
+                co[0] += jitter
+            point.co = (*co, 1)
+    obj = bpy.data.objects.new(name, data)
+    bpy.context.scene.collection.objects.link(obj)
+    activate(obj)
+    return obj
+
+
+def test_surface_curves_turns_a_cube_of_splines_into_a_closed_box():
+    clear_scene()
+    # Spline ends 1e-8 apart still meet: welded before sending.
+    curve = cube_edges_curve("cube_edges", segments=4, jitter=1e-8)
+    curve.location = (1, 2, 3)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves() == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert len(args[0]) == 8 + 12 * 3, "one vertex per curve point"
+    assert answer.report.surfaced == 6 and answer.report.closed
+    surface = bpy.context.active_object
+    assert surface is not curve and surface.type == 'MESH'
+    assert surface.name == "cube_edges_surface"
+    assert surface.matrix_world == curve.matrix_world
+    check_mesh(surface, boundary_edges=0)
+    bm = object_bmesh(surface)
+    try:
+        assert all(len(e.link_faces) == 2 for e in bm.edges), "not closed"
+        assert len(bm.verts) - len(bm.edges) + len(bm.faces) == 2
+        assert len(bm.verts) > 8 + 12 * 3, "refined and faired"
+        kd = KDTree(len(bm.verts))
+        for v in bm.verts:
+            kd.insert(v.co, v.index)
+        kd.balance()
+        for corner in CUBE_CORNERS:
+            assert kd.find(corner)[2] < 1e-7, f"no vertex at {corner}"
+    finally:
+        bm.free()
+    # The triangulate stage adds no vertex; Skip Longest Cycle leaves one
+    # square open (its 16 edges).
+    activate(curve)
+    assert bpy.ops.mesh.dot_surface_curves(stage='TRIANGULATE') \
+        == {'FINISHED'}
+    assert counts(bpy.context.active_object)[:1] == (8 + 12 * 3,)
+    check_mesh(bpy.context.active_object, boundary_edges=0)
+    activate(curve)
+    assert bpy.ops.mesh.dot_surface_curves(
+        stage='TRIANGULATE', skip_longest=True, preset='MINIMAL_AREA') \
+        == {'FINISHED'}
+    check_mesh(bpy.context.active_object, boundary_edges=16)
+
+
+def test_surface_curves_bezier_with_bevel_and_refusals():
+    clear_scene()
+    # A lone closed Bezier curve bounds a disk; its bevel is not sent (and
+    # stays on the curve).
+    bpy.ops.curve.primitive_bezier_circle_add(radius=1)
+    circle = bpy.context.active_object
+    circle.data.bevel_depth = 0.1
+    curves, objects = len(bpy.data.curves), len(bpy.data.objects)
+    assert bpy.ops.mesh.dot_surface_curves(stage='REFINE') == {'FINISHED'}
+    disk = bpy.context.active_object
+    rim = 4 * circle.data.resolution_u
+    check_mesh(disk, boundary_edges=rim)
+    v, f, _ = counts(disk)
+    assert v > rim and f == 2 * v - rim - 2  # a disk: V - E + F = 1
+    assert abs(circle.data.bevel_depth - 0.1) < 1e-6
+    assert len(bpy.data.curves) == curves
+    assert len(bpy.data.objects) == objects + 1
+    # An open spline bounds nothing: the server says so, as a report.
+    data = bpy.data.curves.new("open", 'CURVE')
+    data.dimensions = '3D'
+    spline = data.splines.new('POLY')
+    spline.points.add(2)
+    for point, co in zip(spline.points, [(0, 0, 0), (1, 0, 0), (1, 1, 0)]):
+        point.co = (*co, 1)
+    path = bpy.data.objects.new("open", data)
+    bpy.context.scene.collection.objects.link(path)
+    activate(path)
+    expect_report(lambda: bpy.ops.mesh.dot_surface_curves(),
+                  "INVALID_ARGUMENT", "bounds no patch")
+    # A mesh with faces is no network.
+    bpy.ops.mesh.primitive_cube_add()
+    expect_report(lambda: bpy.ops.mesh.dot_surface_curves(), "has faces")
 
 
 def test_no_triangulation_is_a_report():

@@ -11,6 +11,8 @@ Operators (F3 search, or the menus below):
   mesh.dot_select_holes      Edit Mode: select the rims of the holes Fill Holes
                              would fill, and report their sizes (dry run)
   mesh.dot_triangulate_curve Object Mode: a closed curve -> a surface
+  mesh.dot_surface_curves    Object Mode: a network of curves (splines whose
+                             ends meet) -> one surface (SurfaceNetwork)
 """
 
 bl_info = {
@@ -20,9 +22,10 @@ bl_info = {
     "blender": (3, 4, 0),
     "location": "Edit Mode > Face > Fill Loops (DOT), Triangulate Loops "
                 "(DOT); Object > Fill Holes (DOT); Object > Convert > "
-                "Triangulate Curve (DOT)",
+                "Triangulate Curve (DOT), Surface Curve Network (DOT)",
     "description": "Delaunay-restricted optimal triangulation (DOT) of hole "
-                   "boundaries and curves, and hole filling, by a dot-server",
+                   "boundaries and curves, hole filling, and curve networks "
+                   "into surfaces, by a dot-server",
     "category": "Mesh",
 }
 
@@ -51,6 +54,7 @@ def _menu_object(self, context):
 
 def _menu_convert(self, context):
     self.layout.operator(operators.MESH_OT_dot_triangulate_curve.bl_idname)
+    self.layout.operator(operators.MESH_OT_dot_surface_curves.bl_idname)
 
 
 _menus = (("VIEW3D_MT_edit_mesh_faces", _menu_edit_faces),

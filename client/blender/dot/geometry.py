@@ -5,12 +5,14 @@ joined to their boundary (edges split where DOT inserted vertices, no
 duplicate vertices, faces wound like their neighbours). FillHoles answers
 with patches (dot_client.FillPatches) in the ids of the triangles sent, so
 a patch is added as it is: its new vertices, its faces, and the faces
-whose triangles edge protection split, rebuilt."""
+whose triangles edge protection split, rebuilt. Curve networks for
+SurfaceNetwork: points welded, edges as polylines."""
 from collections import defaultdict
 
 import bmesh
 import numpy as np
 from mathutils import Vector
+from mathutils.kdtree import KDTree
 
 
 class MeshChanged(Exception):
@@ -398,3 +400,47 @@ def closed_loops_of_edges(bm):
     for e in bm.edges:
         e.select = not e.link_faces
     return selected_loops(bm)
+
+
+def curve_network(points, edges, relative_tolerance=1e-6):
+    """A curve network from a wire mesh (a curve converted: a vertex per
+    evaluated point, an edge per segment; splines do not share vertices):
+    points closer than `relative_tolerance` times the bounding-box diagonal
+    welded into the first of them, so that spline ends that meet become
+    junctions (the server welds only exactly equal points), then only the
+    points on an edge kept. Returns (vertices (V, 3), edges (E, 2) over
+    them, each once, none from a point to itself; the number of points
+    welded)."""
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    if len(points) == 0 or len(edges) == 0:
+        return np.zeros((0, 3)), np.zeros((0, 2), np.int64), 0
+    diagonal = float(np.linalg.norm(points.max(0) - points.min(0)))
+    target = _weld(points, relative_tolerance * diagonal)
+    merged = int((target != np.arange(len(points))).sum())
+    pairs = np.sort(target[edges], axis=1)
+    pairs = np.unique(pairs[pairs[:, 0] != pairs[:, 1]], axis=0)
+    used, local = np.unique(pairs, return_inverse=True)
+    return points[used], local.reshape(-1, 2), merged
+
+
+def _weld(points, tolerance):
+    """Per point the first point (in order) within `tolerance` of it, or
+    of a point welded to it: an int64 array, target[i] <= i."""
+    target = np.arange(len(points))
+    if tolerance <= 0:
+        return target
+    tree = KDTree(len(points))
+    for i, p in enumerate(points):
+        tree.insert(p, i)
+    tree.balance()
+    for i, p in enumerate(points):
+        if target[i] != i:
+            continue
+        stack = [p]
+        while stack:  # what lies within the tolerance of the group, too
+            for _, j, _ in tree.find_range(stack.pop(), tolerance):
+                if j > i and target[j] == j:
+                    target[j] = i
+                    stack.append(points[j])
+    return target

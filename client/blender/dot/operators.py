@@ -2,7 +2,8 @@
 """The add-on's operators, one per job: mesh.dot_fill_loops (FillHoles,
 exactly the selected loops), mesh.dot_triangulate_loops (Triangulate, one
 DOT patch per selected loop), mesh.dot_fill_holes (FillHoles, every hole),
-mesh.dot_triangulate_curve.
+mesh.dot_triangulate_curve, mesh.dot_surface_curves (SurfaceNetwork, a
+curve network into one surface).
 
 Each operator reads the geometry in `prepare` (main thread), does the
 remote work in a function that touches no Blender data (run in a worker
@@ -975,6 +976,170 @@ class MESH_OT_dot_triangulate_curve(DotOperator, WeightProps,
         return report_filled(self, filled, len(results), problems, {})
 
 
+# -- mesh.dot_surface_curves ------------------------------------------------
+
+
+def _wire_of(context, obj):
+    """(points (n, 3), edges (e, 2)) of a curve object as Blender evaluates
+    it (Bezier and NURBS splines sampled at their resolution, modifiers
+    applied), without bevel, extrusion or fill; or of an edges-only mesh.
+    Object space. Also the number of faces it evaluates to (a modifier
+    that makes a surface)."""
+    copy = temporary = evaluated = None
+    try:
+        if obj.type == 'MESH':
+            data = obj.data
+        else:
+            # A copy with no surface of its own: bevel, extrusion and a 2D
+            # curve's fill would turn the curve into faces.
+            copy = obj.data.copy()
+            copy.bevel_depth = 0.0
+            copy.extrude = 0.0
+            copy.bevel_mode = 'ROUND'
+            copy.bevel_object = None
+            if copy.dimensions == '2D':
+                copy.fill_mode = 'NONE'
+            temporary = obj.copy()
+            temporary.data = copy
+            temporary.hide_viewport = False
+            context.scene.collection.objects.link(temporary)
+            evaluated = temporary.evaluated_get(
+                context.evaluated_depsgraph_get())
+            data = evaluated.to_mesh()
+        points = np.zeros(3 * len(data.vertices))
+        data.vertices.foreach_get("co", points)
+        edges = np.zeros(2 * len(data.edges), dtype=np.int64)
+        data.edges.foreach_get("vertices", edges)
+        faces = len(data.polygons)
+    finally:
+        if evaluated is not None:
+            evaluated.to_mesh_clear()
+        if temporary is not None:
+            bpy.data.objects.remove(temporary)
+        if copy is not None:
+            bpy.data.curves.remove(copy)
+    return points.reshape(-1, 3), edges.reshape(-1, 2), faces
+
+
+def surface_status(p):
+    """The status bar's text for a dot_client.SurfaceProgress."""
+    if not p.patches_total:
+        return "finding the patches"
+    return f"{p.patches_done} of {p.patches_total} patches"
+
+
+class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
+    """Turn the curve network of the active curve object (its splines, or
+    the edges of a wire mesh) into one surface through the DOT server's
+    SurfaceNetwork: the patches the curves bound found, each triangulated,
+    refined and faired with its neighbours; spline ends that meet become
+    junctions"""
+    bl_idname = "mesh.dot_surface_curves"
+    bl_label = "Surface Curve Network (DOT)"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    stage: EnumProperty(name="Stage", items=STAGES, default='FAIR')
+    preset: EnumProperty(
+        name="Weights", default='DEFAULT',
+        items=[('DEFAULT', "Surface Default", "The service's: least squared "
+                "dihedral angles, triangles facing like the normals the "
+                "patches on each curve share, a little area")] +
+        preset_items())
+    skip_longest: BoolProperty(
+        name="Skip Longest Cycle", default=False,
+        description="Leave the longest cycle open (the rim of an open "
+        "sheet: otherwise a second patch covers the sheet from behind)")
+    weld_distance: FloatProperty(
+        name="Weld Distance", default=1e-6, min=0.0, max=0.01,
+        precision=6,
+        description="Points closer than this fraction of the curves' "
+        "bounding-box diagonal are one point: spline ends that meet become "
+        "junctions")
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return (context.mode == 'OBJECT' and obj is not None
+                and obj.type in ('CURVE', 'MESH'))
+
+    def draw(self, context):
+        layout = self.layout
+        layout.prop(self, "stage")
+        layout.prop(self, "skip_longest")
+        layout.prop(self, "weld_distance")
+        layout.prop(self, "preset")
+        self.draw_weights(layout, self.preset == 'CUSTOM')
+
+    def prepare(self, context):
+        obj = context.active_object
+        if obj.type == 'MESH' and len(obj.data.polygons):
+            self.report({'ERROR'}, "DOT: the mesh has faces; select a curve "
+                        "object or a wire mesh (edges only)")
+            return None
+        points, edges, faces = _wire_of(context, obj)
+        if faces:
+            self.report({'ERROR'}, f"DOT: {obj.name} evaluates to faces "
+                        "(a modifier makes a surface); remove it first")
+            return None
+        vertices, edges, merged = geometry.curve_network(
+            points, edges, self.weld_distance)
+        if len(edges) == 0:
+            self.report({'ERROR'}, f"DOT: {obj.name} has no curves")
+            return None
+        options = dot_client.SurfaceOptions(
+            stage=self.stage.lower(), skip_longest=self.skip_longest,
+            weights=None if self.preset == 'DEFAULT' else self.weights("fill"))
+
+        def work(client, cancel, progress):
+            progress(0.0, "sending the curves")
+            return client.surface_network(
+                vertices, edges, options=options, cancel=cancel,
+                progress=lambda p: progress(
+                    p.patches_done / max(1, p.patches_total),
+                    surface_status(p)))
+        return work, {"object": obj.name, "welded": merged}
+
+    def finish(self, context, state, result):
+        source = bpy.data.objects[state["object"]]
+        r = result.report
+        for p in r.patches:
+            if p.status == "failed":
+                self.report({'WARNING'}, f"DOT: patch {p.id} "
+                            f"({p.boundary_vertices} curve points) failed: "
+                            f"{p.reason}")
+        if r.surfaced == 0 or len(result.faces) == 0:
+            self.report({'ERROR'}, f"DOT: no patch was surfaced "
+                        f"({len(r.patches)} found)")
+            return {'CANCELLED'}
+        # The vertices the faces use, in order (a curve that bounds no
+        # patch, or a failed patch's, adds none).
+        used, faces = np.unique(result.faces, return_inverse=True)
+        mesh = bpy.data.meshes.new(f"{source.name}_surface")
+        mesh.from_pydata(result.vertices[used].tolist(), [],
+                         faces.reshape(-1, 3).tolist())
+        mesh.update()
+        obj = bpy.data.objects.new(mesh.name, mesh)
+        obj.matrix_world = source.matrix_world.copy()
+        for c in source.users_collection or [context.scene.collection]:
+            c.objects.link(obj)
+        for o in context.selected_objects:
+            o.select_set(False)
+        obj.select_set(True)
+        context.view_layer.objects.active = obj
+        notes = []
+        if r.failed:
+            notes.append(f"{r.failed} failed")
+        if r.dangling:
+            notes.append(f"{len(r.dangling)} curves bound no patch")
+        if state["welded"]:
+            notes.append(f"{state['welded']} points welded")
+        self.report({'INFO'}, f"DOT: {r.surfaced} of {len(r.patches)} "
+                    f"patches surfaced"
+                    + (", closed" if r.closed else "")
+                    + (f" ({'; '.join(notes)})" if notes else ""))
+        return {'FINISHED'}
+
+
 classes = (MESH_OT_dot_fill_loops, MESH_OT_dot_triangulate_loops,
            MESH_OT_dot_fill_holes, MESH_OT_dot_select_holes,
-           MESH_OT_dot_triangulate_curve)
+           MESH_OT_dot_triangulate_curve, MESH_OT_dot_surface_curves)

@@ -17,8 +17,9 @@ from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._proto.dot.v1 import triangulation_pb2_grpc as pb_grpc
 from ._proto.grpc.health.v1 import health_pb2, health_pb2_grpc
 from ._types import (FillOptions, FillPatches, FillProgress, FillReport,
-                     FillResult, Progress, Result, ServerInfo,
-                     TriangulateOptions, WeightsLike)
+                     FillResult, Progress, Result, ServerInfo, SurfaceOptions,
+                     SurfaceProgress, SurfaceResult, TriangulateOptions,
+                     WeightsLike)
 
 ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of tuples, ...
 FaceLike = Union[ArrayLike, Sequence[Sequence[int]]]
@@ -705,6 +706,109 @@ class Client:
                 triangles=not options.keep_polygons))
         return self._run(call, cancel, lambda c: wire.assemble_patches(
             c, on_progress=progress, sent_vertices=len(v)))
+
+    # -- SurfaceNetwork -----------------------------------------------------
+
+    def surface_network(self, vertices: ArrayLike,
+                        polylines: FaceLike, *,
+                        normals: Optional[ArrayLike] = None,
+                        options: Optional[SurfaceOptions] = None,
+                        cycles: Optional[Sequence[Sequence[Sequence[int]]]]
+                        = None,
+                        stage: Optional[str] = None,
+                        weights: Optional[WeightsLike] = None,
+                        area: Optional[float] = None,
+                        perimeter: Optional[float] = None,
+                        normal_deviation: Optional[float] = None,
+                        shape: Optional[float] = None,
+                        dihedral: Optional[float] = None,
+                        squared_dihedral: Optional[float] = None,
+                        absolute_weights: Optional[bool] = None,
+                        density: Optional[float] = None,
+                        fairing_continuity: Optional[int] = None,
+                        skip_longest: Optional[bool] = None,
+                        time_budget_ms: Optional[int] = None,
+                        memory_budget_bytes: Optional[int] = None,
+                        progress: Optional[Callable[[SurfaceProgress],
+                                                    None]] = None,
+                        request_id: str = "",
+                        timeout: Optional[float] = _DEFAULT,
+                        cancel: Optional[CancelToken] = None
+                        ) -> SurfaceResult:
+        """One surface through a network of 3D curves (the SurfaceNetwork
+        stream): the cycles of curves that bound patches are found (or
+        given), each patch is triangulated by DOT, refined, and the whole
+        network is faired at once, every curve vertex fixed.
+
+        ``vertices``: (V, 3) floats. ``polylines``: the curves, each a
+        sequence of vertex ids (at least 2; a polyline that ends at its
+        first vertex is closed), as a list of int sequences of any lengths
+        or a (P, k) array ((E, 2): one polyline per edge, as Blender's mesh
+        edges). Curves meet where they share a vertex id or exactly the
+        same coordinates (the server welds those); where other than two
+        curve pieces meet is a junction. ``normals``: optional (V, 3)
+        surface normals at the vertices (sent as the channel
+        ``"normal"``), for the ``normal_deviation`` metric.
+
+        ``options``: a :class:`SurfaceOptions` (None: its defaults, which
+        are the service's). The keyword arguments, when given (not None),
+        replace its fields: ``cycles`` (the patches given, each a list of
+        loops of vertex ids: ``[[bottom_rim, top_rim]]`` is a tube),
+        ``stage`` (``"triangulate"``: no new vertices; ``"refine"``;
+        ``"fair"``, the default), ``weights`` (a :class:`Weights`, a
+        :data:`WEIGHT_PRESETS` name or a dict) and single metric weights
+        (``area``, ..., ``squared_dihedral``: the others count 0),
+        ``absolute_weights``, ``density``, ``fairing_continuity``,
+        ``skip_longest``, ``time_budget_ms``, ``memory_budget_bytes``.
+
+        ``progress(SurfaceProgress)`` is called once the cycles are found
+        and as patches are triangulated; an exception it raises (also
+        KeyboardInterrupt), a ``timeout`` or a ``cancel`` token cancels the
+        call on the server.
+
+        Returns a :class:`SurfaceResult`: ``vertices`` (the network's
+        first, exactly as sent, then new ones), ``faces`` (int32 (F, 3),
+        consistently oriented, every curve edge of a surfaced patch among
+        their edges) and the :class:`SurfaceReport` (patches that could not
+        be surfaced are reported ``"failed"`` and left out, never raised).
+        A network that bounds no patch, crossing or duplicate curves, and
+        cycles that are not cycles of the network raise :class:`DotError`
+        (``INVALID_ARGUMENT``) naming them.
+        """
+        o = SurfaceOptions.merged(
+            options, cycles=cycles, stage=stage, weights=weights, area=area,
+            perimeter=perimeter, normal_deviation=normal_deviation,
+            shape=shape, dihedral=dihedral,
+            squared_dihedral=squared_dihedral,
+            absolute_weights=absolute_weights, density=density,
+            fairing_continuity=fairing_continuity,
+            skip_longest=skip_longest, time_budget_ms=time_budget_ms,
+            memory_budget_bytes=memory_budget_bytes)
+        v = check.points("vertices", vertices)
+        lines = check.polylines(polylines, len(v))
+        channels: List[Any] = []
+        if normals is not None:
+            n = check.points("normals", normals)
+            if n.shape != v.shape:
+                raise InvalidInput(
+                    f"normals has {len(n)} rows; expected one per vertex "
+                    f"({len(v)})")
+            channels = check.attributes({"normal": n}, None, len(v), 0)
+        for p, patch in enumerate(o.cycles):
+            for k, loop in enumerate(patch):
+                for i, vertex in enumerate(loop):
+                    if vertex >= len(v):
+                        raise InvalidInput(
+                            f"cycles[{p}][{k}][{i}] = {vertex} is not a "
+                            f"vertex of the network (it has {len(v)})")
+        deadline = self._deadline(timeout)
+        requests = wire.surface_requests(str(request_id), o.to_proto(), v,
+                                         lines, channels=channels)
+        call = self._stub.SurfaceNetwork(requests, timeout=deadline)
+        result: SurfaceResult = self._run(
+            call, cancel,
+            lambda c: wire.assemble_surface(c, v, on_progress=progress))
+        return result
 
     # -- Health and info ----------------------------------------------------
 

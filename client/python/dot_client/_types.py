@@ -8,7 +8,7 @@ Each result class mirrors one proto message field by field (see
 become numpy arrays, metric weights a dict keyed by metric name.
 
 The option classes (:class:`Weights`, :class:`TriangulateOptions`,
-:class:`FillOptions`) are frozen dataclasses with the service's defaults;
+:class:`FillOptions`, :class:`SurfaceOptions`) are frozen dataclasses with the service's defaults;
 each checks its values when made (raising :class:`InvalidInput`) and
 builds its proto message in one place (``to_proto``), which the client's
 keyword arguments go through too. :data:`WEIGHT_PRESETS` is the one table
@@ -459,6 +459,153 @@ class FillProgress(_Plain):
                                                  "FILL_PHASE_", zero=""))
 
 
+def _vertex_ids(values: Any) -> np.ndarray:
+    """A repeated uint32 field of vertex ids as an int32 array."""
+    return np.array(values, dtype=np.int64).astype(np.int32)
+
+
+@dataclass
+class CurveUse(_Plain):
+    """One curve of a patch's loop (proto ``CurveUse``): ``curve`` is its
+    index in :attr:`SurfaceReport.curves`; ``reversed``: the loop runs it
+    from its last vertex to its first."""
+    curve: int = 0
+    reversed: bool = False
+
+    @classmethod
+    def from_proto(cls, m: Any) -> "CurveUse":
+        return _scalars(cls, m)
+
+
+@dataclass
+class PatchLoop(_Plain):
+    """One loop of a patch's boundary (proto ``PatchLoop``): the curves it
+    runs along, in order, and ``vertices``, its vertex ids as sent (int32
+    array, its first junction once)."""
+    curves: List[CurveUse] = field(default_factory=list)
+    vertices: np.ndarray = field(
+        default_factory=lambda: np.zeros(0, np.int32))
+
+    @classmethod
+    def from_proto(cls, m: Any) -> "PatchLoop":
+        return cls(curves=[CurveUse.from_proto(c) for c in m.curves],
+                   vertices=_vertex_ids(m.vertices))
+
+
+@dataclass
+class PatchReport(_Plain):
+    """One patch of a surfaced curve network (proto ``PatchReport``): the
+    cycle of curves that bounds it (``loops``: one, or several for a patch
+    joining loops, such as a tube between two rims) and what became of it.
+
+    ``status`` is ``"surfaced"``, ``"failed"`` (no surface meets the rest
+    only along the curves; ``reason`` says why, and the patch is left out
+    of the mesh), ``"skipped"`` (``skip_longest``) or ``"stopped"``.
+    ``search_space_used`` and ``solver`` name how its DOT patch was found;
+    ``cost`` is that patch's weighted cost; ``resolves`` counts re-solves
+    forbidding chords that met other patches; ``fan`` is True when DOT found
+    nothing and the patch is a fan from a new vertex at the loop's centroid;
+    ``triangles`` (in the output), ``refined_vertices`` and ``faired`` say
+    what refinement and fairing did to it. (The wire carries ``status`` as
+    the enum ``PatchStatus``; these are its names.)"""
+    id: int = 0
+    loops: List[PatchLoop] = field(default_factory=list)
+    boundary_vertices: int = 0
+    status: str = ""
+    reason: str = ""
+    search_space_used: str = ""
+    solver: str = ""
+    cost: float = 0.0
+    resolves: int = 0
+    fan: bool = False
+    triangles: int = 0
+    refined_vertices: int = 0
+    faired: bool = False
+    triangulate_ms: float = 0.0
+    refine_ms: float = 0.0
+
+    @classmethod
+    def from_proto(cls, m: Any) -> "PatchReport":
+        return _scalars(
+            cls, m, loops=[PatchLoop.from_proto(loop) for loop in m.loops],
+            status=_enum_name(m.status, pb.PatchStatus, "PATCH_STATUS_"))
+
+
+@dataclass
+class SurfaceReport(_Plain):
+    """The proto ``SurfaceReport`` of a surfaced curve network.
+
+    The network as a graph: ``curves`` (a vertex id array per curve, ids as
+    sent, from one junction to the next; a closed curve's first id is also
+    its last), ``junctions``, ``merged_vertices`` (points welded to an
+    earlier copy at exactly the same coordinates), ``dangling`` (ids of
+    curves that bound no patch). ``patches``: a :class:`PatchReport` per
+    cycle; ``surfaced`` and ``failed`` count them. ``closed``: every curve
+    that is not dangling borders two surfaced patches or more (more: the
+    ``non_manifold_curves``). ``faired_whole``: one fairing ran over the
+    whole network. ``intersecting_pairs`` of the surface: 0. ``notes``: what
+    was found odd. Times in ms per phase. The mesh's first
+    ``input_vertices`` vertices are the network's, in order; it has
+    ``mesh_vertices`` vertices and ``mesh_faces`` triangles in all."""
+    version: int = 0
+    curves: List[np.ndarray] = field(default_factory=list)
+    junctions: int = 0
+    merged_vertices: int = 0
+    dangling: List[int] = field(default_factory=list)
+    notes: List[str] = field(default_factory=list)
+    patches: List[PatchReport] = field(default_factory=list)
+    surfaced: int = 0
+    failed: int = 0
+    closed: bool = False
+    non_manifold_curves: int = 0
+    faired_whole: bool = False
+    intersecting_pairs: int = 0
+    cycles_ms: float = 0.0
+    triangulate_ms: float = 0.0
+    refine_ms: float = 0.0
+    fair_ms: float = 0.0
+    check_ms: float = 0.0
+    total_ms: float = 0.0
+    input_vertices: int = 0
+    mesh_vertices: int = 0
+    mesh_faces: int = 0
+
+    @classmethod
+    def from_proto(cls, m: Any) -> "SurfaceReport":
+        return _scalars(
+            cls, m, curves=[_vertex_ids(c.vertices) for c in m.curves],
+            dangling=[int(c) for c in m.dangling], notes=list(m.notes),
+            patches=[PatchReport.from_proto(p) for p in m.patches])
+
+
+@dataclass
+class SurfaceProgress(_Plain):
+    """Where a SurfaceNetwork call is: ``patches_done`` of
+    ``patches_total`` triangulated (0 of n once the cycles are found),
+    ``elapsed_ms`` since the call arrived on the server."""
+    patches_done: int = 0
+    patches_total: int = 0
+    elapsed_ms: float = 0.0
+
+    @classmethod
+    def from_proto(cls, m: Any) -> "SurfaceProgress":
+        return _scalars(cls, m)
+
+
+@dataclass
+class SurfaceResult(_Plain):
+    """A curve network's surface (:meth:`Client.surface_network`):
+    ``vertices`` float64 (V, 3), the network's vertices first, every one in
+    its order at its exact coordinates (``report.input_vertices`` of them;
+    a point welded to an earlier copy is left unused), then the new ones;
+    ``faces`` int32 (F, 3) triangles, consistently oriented, every curve
+    edge of a surfaced patch among their edges; ``report`` the
+    :class:`SurfaceReport`."""
+    vertices: np.ndarray
+    faces: np.ndarray
+    report: SurfaceReport
+
+
 @dataclass
 class Limits(_Plain):
     """The server's limits (proto ``Limits``)."""
@@ -706,6 +853,24 @@ def _ids(name: str, value: Any, minimum: int, maximum: int) -> Tuple[int, ...]:
                                maximum=maximum) for i, h in enumerate(value))
 
 
+def _nonzero_weights(value: Any) -> Weights:
+    """FillOptions' and SurfaceOptions' weights: set, so not all zero."""
+    w = Weights.of(value, "fill")
+    if w.is_zero():
+        raise InvalidInput("every metric weight is zero; leave the weights "
+                           "unset (None) for the default")
+    return w
+
+
+def _density(value: Any) -> float:
+    """A refinement density factor: 0 (the default, sqrt(2)) or 0.1 .. 100."""
+    d = check.number("density", value)
+    if d != 0 and not 0.1 <= d <= 100:
+        raise InvalidInput(
+            f"density must be between 0.1 and 100 (0: sqrt(2)); got {d}")
+    return d
+
+
 @dataclass(frozen=True)
 class FillOptions(_Options):
     """How FillHoles fills a mesh. Every field and its default:
@@ -768,12 +933,7 @@ class FillOptions(_Options):
         _set(self, "stage", check.choice("stage", self.stage,
                                          list(_FILL_STAGES)))
         if self.weights is not None:
-            w = Weights.of(self.weights, "fill")
-            if w.is_zero():
-                raise InvalidInput(
-                    "every metric weight is zero; leave the weights unset "
-                    "(None) for the default")
-            _set(self, "weights", w)
+            _set(self, "weights", _nonzero_weights(self.weights))
         _set(self, "absolute_weights", check.flag("absolute_weights",
                                                   self.absolute_weights))
         _set(self, "max_hole_edges", check.integer("max_hole_edges",
@@ -797,11 +957,7 @@ class FillOptions(_Options):
                 raise InvalidInput(f"join[{i}] names fewer than 2 loops")
             groups.append(ids)
         _set(self, "join", tuple(groups))
-        d = check.number("density", self.density)
-        if d != 0 and not 0.1 <= d <= 100:
-            raise InvalidInput(
-                f"density must be between 0.1 and 100 (0: sqrt(2)); got {d}")
-        _set(self, "density", d)
+        _set(self, "density", _density(self.density))
         if self.fairing_continuity is not None:
             _set(self, "fairing_continuity", check.integer(
                 "fairing_continuity", self.fairing_continuity, 0, 2))
@@ -844,4 +1000,115 @@ class FillOptions(_Options):
         o.dry_run = dry_run
         o.keep_polygons = self.keep_polygons
         o.allow_input_intersections = self.allow_input_intersections
+        return o
+
+
+def _cycles(value: Any) -> Tuple[Tuple[Tuple[int, ...], ...], ...]:
+    """SurfaceOptions.cycles as tuples: patches of loops of vertex ids."""
+    if value is None:
+        return ()
+    hint = ("cycles must be a list of patches, each a list of loops, each a "
+            "list of vertex ids (one patch of one loop: [[0, 1, 2, 3]])")
+    if isinstance(value, (str, bytes)) or not isinstance(
+            value, (Sequence, np.ndarray)):
+        raise InvalidInput(hint)
+    patches = []
+    for p, patch in enumerate(value):
+        if isinstance(patch, (str, bytes)) or not isinstance(
+                patch, (Sequence, np.ndarray)):
+            raise InvalidInput(f"cycles[{p}]: {hint}")
+        if len(patch) == 0:
+            raise InvalidInput(f"cycles[{p}] has no loops")
+        loops = []
+        for k, loop in enumerate(patch):
+            if not isinstance(loop, (Sequence, np.ndarray)) or isinstance(
+                    loop, (str, bytes)):
+                raise InvalidInput(f"cycles[{p}][{k}] is not a list of "
+                                   f"vertex ids: {hint}")
+            ids = _ids(f"cycles[{p}][{k}]", loop, 0, check.UINT32_MAX)
+            if not ids:
+                raise InvalidInput(f"cycles[{p}][{k}] has no vertices")
+            loops.append(ids)
+        patches.append(tuple(loops))
+    return tuple(patches)
+
+
+@dataclass(frozen=True)
+class SurfaceOptions(_Options):
+    """How SurfaceNetwork surfaces a curve network. Every field and its
+    default:
+
+    ``stage``: ``"triangulate"`` (each patch's DOT triangulation over the
+    curve vertices alone: no new vertices), ``"refine"`` (+ Liepa
+    refinement) or ``"fair"`` (+ fairing of the whole network at once, every
+    curve vertex fixed: the finished surface; default).
+    ``weights``: None (default) for the service's (squared dihedral 1,
+    normal deviation 0.25 against the normals the patches on each curve
+    share, area 0.01), or a :class:`Weights` (a preset name of
+    :data:`WEIGHT_PRESETS`, its FillHoles weights, or a dict is taken too;
+    not all zero). ``absolute_weights``: keep area and perimeter in the
+    network's units instead of per cycle scale (default False).
+    ``density``: refinement density factor (0, the default: sqrt(2); else
+    0.1 .. 100). ``fairing_continuity``: 0 (membrane), 1 (thin plate) or 2
+    (minimum variation); None, the default: 1.
+
+    ``cycles``: the patches, given: a list of patches, each a list of
+    loops, each a list of vertex ids as sent (``[[bottom, top]]``: one
+    patch joining two rims, a tube); consecutive ids must be joined by a
+    curve (listing the junctions is enough where one curve joins them).
+    Empty (default): the server finds the cycles (a rotation system at the
+    junctions; manifold networks of any genus; a closed curve alone bounds
+    a disk). ``skip_longest``: leave the found cycle with the most vertices
+    open (the rim of an open sheet; default False).
+    ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
+    (0: the server's).
+    """
+    _weights_use = "fill"
+
+    stage: str = "fair"
+    weights: Optional[Weights] = None
+    absolute_weights: bool = False
+    density: float = 0.0
+    fairing_continuity: Optional[int] = None
+    cycles: Tuple[Tuple[Tuple[int, ...], ...], ...] = ()
+    skip_longest: bool = False
+    time_budget_ms: int = 0
+    memory_budget_bytes: int = 0
+
+    def __post_init__(self) -> None:
+        _set(self, "stage", check.choice("stage", self.stage,
+                                         list(_FILL_STAGES)))
+        if self.weights is not None:
+            _set(self, "weights", _nonzero_weights(self.weights))
+        _set(self, "absolute_weights", check.flag("absolute_weights",
+                                                  self.absolute_weights))
+        _set(self, "density", _density(self.density))
+        if self.fairing_continuity is not None:
+            _set(self, "fairing_continuity", check.integer(
+                "fairing_continuity", self.fairing_continuity, 0, 2))
+        _set(self, "cycles", _cycles(self.cycles))
+        _set(self, "skip_longest", check.flag("skip_longest",
+                                              self.skip_longest))
+        _set(self, "time_budget_ms", check.integer("time_budget_ms",
+                                                   self.time_budget_ms))
+        _set(self, "memory_budget_bytes", check.integer(
+            "memory_budget_bytes", self.memory_budget_bytes,
+            maximum=check.UINT64_MAX))
+
+    def to_proto(self) -> Any:
+        """The SurfaceOptions message."""
+        o = pb.SurfaceOptions(stage=_FILL_STAGES[self.stage])
+        if self.weights is not None:
+            self.weights.to_proto(o.weights)
+        o.absolute_weights = self.absolute_weights
+        o.density = self.density
+        if self.fairing_continuity is not None:
+            o.fairing_continuity = self.fairing_continuity
+        for patch in self.cycles:
+            c = o.cycles.add()
+            for loop in patch:
+                c.loops.add().vertices.extend(loop)
+        o.skip_longest = self.skip_longest
+        o.time_budget_ms = self.time_budget_ms
+        o.memory_budget_bytes = self.memory_budget_bytes
         return o

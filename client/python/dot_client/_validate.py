@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -81,45 +81,71 @@ def timeout(name: str, value: Any) -> Optional[float]:
     return v
 
 
+# The words of index_lists' errors, for mesh faces and for the polylines
+# of a curve network.
+_FACES = {"name": "faces", "item": "face", "least": 3, "unit": "corners",
+          "shape": "(F, 3) (or (F, k), k >= 3)",
+          "whole": "an (F, 3) array or a list of polygons",
+          "empty": "the mesh has no faces"}
+_POLYLINES = {"name": "polylines", "item": "polyline", "least": 2,
+              "unit": "points",
+              "shape": "(P, k), k >= 2 (or be a list of polylines)",
+              "whole": "a (P, k) array or a list of polylines",
+              "empty": "the network has no polylines"}
+
+
 def faces(value: Any, vertex_count: int) -> Union[np.ndarray, List[np.ndarray]]:
     """Faces as an int64 array (F, k), k >= 3, or a list of int64 arrays
     (polygons of mixed sizes), every index in [0, vertex_count)."""
+    return _index_lists(value, vertex_count, _FACES)
+
+
+def polylines(value: Any,
+              vertex_count: int) -> Union[np.ndarray, List[np.ndarray]]:
+    """The polylines of a curve network as :func:`faces` checks faces: an
+    int64 array (P, k), k >= 2 (edges: (E, 2)), or a list of int64 arrays
+    of any lengths >= 2, every index in [0, vertex_count)."""
+    return _index_lists(value, vertex_count, _POLYLINES)
+
+
+def _index_lists(value: Any, vertex_count: int,
+                 w: Dict[str, Any]) -> Union[np.ndarray, List[np.ndarray]]:
+    name, item, least, unit = w["name"], w["item"], w["least"], w["unit"]
     if value is None:
-        raise InvalidInput("faces is missing")
+        raise InvalidInput(f"{name} is missing")
     if isinstance(value, np.ndarray) or (
             isinstance(value, Sequence) and value and
             len({len(f) if isinstance(f, (Sequence, np.ndarray)) else -1
                  for f in value}) == 1):
         a = np.asarray(value)
         if a.dtype == object:
-            raise InvalidInput("faces must be integer vertex indices")
+            raise InvalidInput(f"{name} must be integer vertex indices")
         if a.size and not np.issubdtype(a.dtype, np.integer):
             if np.issubdtype(a.dtype, np.floating) and np.all(np.mod(a, 1) == 0):
                 a = a.astype(np.int64)
             else:
                 raise InvalidInput(
-                    f"faces must be integer vertex indices; got dtype {a.dtype}")
-        if a.ndim != 2 or a.shape[1] < 3:
+                    f"{name} must be integer vertex indices; got dtype "
+                    f"{a.dtype}")
+        if a.ndim != 2 or a.shape[1] < least:
             raise InvalidInput(
-                f"faces must have shape (F, 3) (or (F, k), k >= 3); got "
-                f"shape {a.shape}")
+                f"{name} must have shape {w['shape']}; got shape {a.shape}")
         if len(a) == 0:
-            raise InvalidInput("the mesh has no faces")
+            raise InvalidInput(w["empty"])
         a = a.astype(np.int64)
         bad = (a < 0) | (a >= vertex_count)
         if bad.any():
             f = int(np.argmax(bad.any(axis=1)))
             v = int(a[f][bad[f]][0])
             raise InvalidInput(
-                f"face {f} has vertex index {v}, but there are only "
+                f"{item} {f} has vertex index {v}, but there are only "
                 f"{vertex_count} vertices")
         return a
     if not isinstance(value, Sequence):
         raise InvalidInput(
-            f"faces must be an (F, 3) array or a list of polygons; got "
-            f"{type(value).__name__}")
+            f"{name} must be {w['whole']}; got {type(value).__name__}")
     if len(value) == 0:
-        raise InvalidInput("the mesh has no faces")
+        raise InvalidInput(w["empty"])
     out: List[np.ndarray] = []
     for i, f in enumerate(value):
         try:
@@ -127,14 +153,15 @@ def faces(value: Any, vertex_count: int) -> Union[np.ndarray, List[np.ndarray]]:
         except (TypeError, ValueError):
             a = np.asarray([None])
         if a.ndim != 1 or not np.issubdtype(a.dtype, np.integer):
-            raise InvalidInput(f"face {i} must be a list of vertex indices")
-        if len(a) < 3:
+            raise InvalidInput(f"{item} {i} must be a list of vertex indices")
+        if len(a) < least:
             raise InvalidInput(
-                f"face {i} has {len(a)} corners; a face needs at least 3")
+                f"{item} {i} has {len(a)} {unit}; a {item} needs at least "
+                f"{least}")
         bad = (a < 0) | (a >= vertex_count)
         if bad.any():
             raise InvalidInput(
-                f"face {i} has vertex index {int(a[bad][0])}, but there are "
+                f"{item} {i} has vertex index {int(a[bad][0])}, but there are "
                 f"only {vertex_count} vertices")
         out.append(a.astype(np.int64))
     return out

@@ -5,11 +5,14 @@
 (``proto/wire/wire.cc``) and :class:`PatchReader`
 ``dot::wire::PatchReader`` (``proto/wire/fill_wire.cc``) check for check
 and message for message; :func:`fill_requests` mirrors
-``dot::wire::FillRequestWriter`` (``proto/wire/fill_wire.cc``);
+``dot::wire::FillRequestWriter`` (``proto/wire/fill_wire.cc``) and
+:func:`surface_requests` ``dot::wire::SurfaceRequestWriter``
+(``proto/wire/surface_wire.cc``);
 :func:`assemble_triangulate`, :func:`assemble_fill` and
 :func:`assemble_patches` read a response stream as ``TriangulateRemote``
 (``client/remote_call.cc``) and ``FillRemote`` (``client/fill_call.cc``)
-do. The client uses them on live streams; tests replay recorded streams
+do, and :func:`assemble_surface` a SurfaceNetwork answer. The client
+uses them on live streams; tests replay recorded streams
 (``tests/golden/``) through them, and the C++ tests replay the same files
 through the C++ code, so the two cannot drift apart.
 """
@@ -25,7 +28,8 @@ import numpy as np
 from ._errors import DotError, FillStopped, from_rpc_error
 from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._types import (FillPatches, FillProgress, FillReport, FillResult,
-                     HolePatch, Progress, Result, Summary)
+                     HolePatch, Progress, Result, Summary, SurfaceProgress,
+                     SurfaceReport, SurfaceResult)
 
 #: Requests stay well under gRPC's default 4 MiB message limit (as dotctl).
 REQUEST_BYTES = 1 << 20
@@ -578,6 +582,53 @@ def assemble_patches(
     return result
 
 
+def assemble_surface(
+        responses: Iterable[Any], vertices: np.ndarray,
+        on_progress: Optional[Callable[[SurfaceProgress], None]] = None
+) -> SurfaceResult:
+    """The SurfaceResult of a SurfaceNetwork response stream that ended
+    OK, read as ``SurfaceRemote`` (``client/surface_call.cc``) reads it:
+    progress messages (to ``on_progress``), the whole mesh in MeshChunk
+    slices (reassembled by :class:`MeshAssembler` to the report's
+    ``mesh_vertices`` and ``mesh_faces``, at least as many vertices as
+    ``vertices``, the network as sent), the report last. Raises
+    :class:`DotError` (``INTERNAL``) when the report is missing or the
+    mesh does not add up, with dotctl's messages."""
+    assembler = MeshAssembler()
+    report = None
+    assembled: Optional[str] = None
+    for message in responses:
+        kind = message.WhichOneof("payload")
+        if kind == "progress":
+            if on_progress is not None:
+                on_progress(SurfaceProgress.from_proto(message.progress))
+        elif kind == "mesh":
+            if assembled is None:
+                try:
+                    assembler.add(message.mesh)
+                except AssemblyError as e:
+                    assembled = str(e)
+        elif kind == "report":
+            report = message.report
+    if report is None:
+        raise DotError(grpc.StatusCode.INTERNAL,
+                       "the server ended the stream without a report")
+    if assembled is None:
+        try:
+            mesh_vertices, faces = assembler.finish(report.mesh_vertices,
+                                                    report.mesh_faces)
+            if len(mesh_vertices) < len(vertices):
+                assembled = ("the surface has fewer vertices than the "
+                             "network sent")
+        except AssemblyError as e:
+            assembled = str(e)
+    if assembled is not None:
+        raise DotError(grpc.StatusCode.INTERNAL,
+                       f"bad mesh from the server: {assembled}")
+    return SurfaceResult(vertices=mesh_vertices, faces=faces,
+                         report=SurfaceReport.from_proto(report))
+
+
 FaceInput = Union[np.ndarray, Sequence[Sequence[int]]]
 
 
@@ -603,51 +654,82 @@ def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
     at most ``max_bytes`` // 5 floats: its rows, then, per corner, an
     index per corner (row c for corner c).
     """
+    first = pb.FillHolesRequest(id=request_id)
+    first.options.CopyFrom(options)
+    return _sliced(first, pb.FillHolesRequest, "mesh", vertices, faces,
+                   max_bytes, channels)
+
+
+def surface_requests(request_id: str, options: Any, vertices: np.ndarray,
+                     polylines: Union[np.ndarray, List[np.ndarray]],
+                     max_bytes: int = REQUEST_BYTES,
+                     channels: Sequence[Tuple[str, bool, np.ndarray]] = ()
+                     ) -> Iterator[Any]:
+    """The SurfaceNetworkRequest stream of a curve network, made lazily
+    (``SurfaceRequestWriter``, ``proto/wire/surface_wire.cc``): its
+    ``network`` slices exactly as :func:`fill_requests` slices a mesh, the
+    polylines as the faces (``face_sizes`` their point counts), the
+    optional per-vertex normals as the channel ``("normal", False, (V, 3)
+    rows)``; id and ``options`` (a SurfaceOptions message) with the first
+    slice."""
+    first = pb.SurfaceNetworkRequest(id=request_id)
+    first.options.CopyFrom(options)
+    return _sliced(first, pb.SurfaceNetworkRequest, "network", vertices,
+                   polylines, max_bytes, channels)
+
+
+def _sliced(first: Any, make: Callable[[], Any], field: str,
+            vertices: np.ndarray, faces: Union[np.ndarray, List[np.ndarray]],
+            max_bytes: int,
+            channels: Sequence[Tuple[str, bool, np.ndarray]]
+            ) -> Iterator[Any]:
+    """The messages of :func:`fill_requests`: ``first`` (id and options
+    set), then more of ``make()``, each with a MeshChunk slice in its
+    field ``field``."""
     vertices_per = max(1, max_bytes // 24)
     indices_per = max(3, max_bytes // 5)
     flat = np.ascontiguousarray(vertices, dtype=np.float64).reshape(-1)
     n = len(flat) // 3
-    first = pb.FillHolesRequest(id=request_id)
-    first.options.CopyFrom(options)
     pending: Optional[Any] = first  # id and options go with the first slice
 
-    def message() -> Any:
+    def message() -> Tuple[Any, Any]:
+        """The next message and its MeshChunk."""
         nonlocal pending
-        m, pending = (pending or pb.FillHolesRequest()), None
-        return m
+        m, pending = (pending or make()), None
+        return m, getattr(m, field)
 
     for start in range(0, n, vertices_per):
-        m = message()
+        m, c = message()
         end = min(n, start + vertices_per)
-        m.mesh.first_vertex = start
-        m.mesh.vertices.extend(flat[3 * start:3 * end].tolist())
+        c.first_vertex = start
+        c.vertices.extend(flat[3 * start:3 * end].tolist())
         yield m
     if isinstance(faces, np.ndarray):
         k = faces.shape[1] if faces.ndim == 2 else 3
         per = max(1, indices_per // k)  # whole faces per message
         rows = np.ascontiguousarray(faces, dtype=np.int64).reshape(-1, k)
         for start in range(0, len(rows), per):
-            m = message()
+            m, c = message()
             block = rows[start:start + per]
-            m.mesh.first_vertex = n
-            m.mesh.first_triangle = start
-            m.mesh.triangles.extend(block.reshape(-1).tolist())
+            c.first_vertex = n
+            c.first_triangle = start
+            c.triangles.extend(block.reshape(-1).tolist())
             if k != 3:
-                m.mesh.face_sizes.extend([k] * len(block))
+                c.face_sizes.extend([k] * len(block))
             yield m
     else:
         all_triangles = all(len(f) == 3 for f in faces)
-        m, in_message = None, 0
+        m, c, in_message = None, None, 0
         for i, face in enumerate(faces):
             if m is None or in_message + len(face) > indices_per:
                 if m is not None:
                     yield m
-                m, in_message = message(), 0
-                m.mesh.first_vertex = n
-                m.mesh.first_triangle = i
-            m.mesh.triangles.extend(int(v) for v in face)
+                (m, c), in_message = message(), 0
+                c.first_vertex = n
+                c.first_triangle = i
+            c.triangles.extend(int(v) for v in face)
             if not all_triangles:
-                m.mesh.face_sizes.append(len(face))
+                c.face_sizes.append(len(face))
             in_message += len(face)
         if m is not None:
             yield m
@@ -656,28 +738,26 @@ def fill_requests(request_id: str, options: Any, vertices: np.ndarray,
         dims = rows.shape[1]
         per = max(1, (max_bytes // 5) // dims)
 
-        def slice_of() -> Any:
-            m = message()
-            m.mesh.first_vertex = n
-            m.mesh.first_triangle = faces_sent
-            a = m.mesh.attribute
+        def slice_of() -> Tuple[Any, Any]:
+            m, c = message()
+            c.first_vertex = n
+            c.first_triangle = faces_sent
+            a = c.attribute
             a.name, a.dims, a.per_corner = name, dims, per_corner
-            return m
+            return m, a
 
         for start in range(0, max(1, len(rows)), per):
-            m = slice_of()
-            m.mesh.attribute.first_value = start
-            m.mesh.attribute.values.extend(
-                rows[start:start + per].reshape(-1).tolist())
+            m, a = slice_of()
+            a.first_value = start
+            a.values.extend(rows[start:start + per].reshape(-1).tolist())
             yield m
         if per_corner:
             per = max(1, max_bytes // 5)
             for start in range(0, len(rows), per):
-                m = slice_of()
-                m.mesh.attribute.first_value = len(rows)
-                m.mesh.attribute.first_corner = start
-                m.mesh.attribute.indices.extend(
-                    range(start, min(len(rows), start + per)))
+                m, a = slice_of()
+                a.first_value = len(rows)
+                a.first_corner = start
+                a.indices.extend(range(start, min(len(rows), start + per)))
                 yield m
     if pending is not None:
         yield pending  # an empty mesh: id and options alone
