@@ -53,8 +53,6 @@ v1::PatchStatus PatchStatusToWire(PatchStatus s) {
       return v1::PATCH_STATUS_FAILED;
     case PatchStatus::kSkipped:
       return v1::PATCH_STATUS_SKIPPED;
-    case PatchStatus::kStopped:
-      return v1::PATCH_STATUS_STOPPED;
   }
   return v1::PATCH_STATUS_UNSPECIFIED;
 }
@@ -65,8 +63,6 @@ PatchStatus PatchStatusFromWire(v1::PatchStatus s) {
       return PatchStatus::kSurfaced;
     case v1::PATCH_STATUS_SKIPPED:
       return PatchStatus::kSkipped;
-    case v1::PATCH_STATUS_STOPPED:
-      return PatchStatus::kStopped;
     default:
       return PatchStatus::kFailed;
   }

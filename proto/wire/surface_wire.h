@@ -59,6 +59,7 @@ class SurfaceRequestReader {
   const v1::SurfaceOptions& options() const { return options_; }
   size_t vertices() const { return chunks_.vertices(); }
   size_t polylines() const { return chunks_.faces(); }
+  size_t points() const { return chunks_.corners(); }  // over polylines
   size_t messages() const { return messages_; }
 
  private:

@@ -24,7 +24,7 @@ namespace dot::server {
 
 // Networks are bounded as FillHoles meshes are: at most fill_max_vertices
 // points and fill_max_faces polylines, charged FillMemoryBytes(points,
-// polyline points) of the server's memory for uploads while held.
+// polylines + their points) of the server's memory for uploads while held.
 class SurfaceUpload {
  public:
   explicit SurfaceUpload(JobRunner* runner);

@@ -19,10 +19,13 @@
 // The contract: the mesh's first vertices are the network's, every one in
 // its order at its exact coordinates (a point welded to an earlier copy is
 // left unused: SurfaceResult::vertex_of_input), then the new ones; every
-// curve edge of a surfaced patch is a mesh edge; the
-// mesh is edge-manifold, consistently oriented and intersection-free
-// (checked with exact predicates). A patch that cannot be surfaced without
-// breaking that is left out and reported, never included.
+// curve edge of a surfaced patch is a mesh edge; no face crosses another
+// (checked with exact predicates after every step), no edge but a curve's
+// has more than two faces, and the patches are consistently oriented, so
+// the mesh of a manifold network is edge-manifold (given cycles where three
+// patches meet on a curve make it non-manifold there, and the report
+// counts those curves). A patch that cannot be surfaced without breaking
+// that is left out and reported, never included.
 #ifndef DOT_NETWORK_H_
 #define DOT_NETWORK_H_
 
@@ -127,12 +130,16 @@ Status FindNetworkCycles(const NetworkGraph& graph,
 // Cycles a user gives: per patch, loops of input vertex ids (as
 // CurveNetwork numbers them), each loop listing the vertices in order;
 // consecutive listed vertices must be joined by a curve (listing only the
-// junctions suffices where one curve joins them). kInvalidArgument names
-// the patch, loop and vertices that do not form a cycle.
+// junctions suffices where one curve joins them). The loops of one patch
+// run as its boundary does, the surface on their left (a tube's two rims
+// against each other), and two patches that share a curve run it once each
+// way. kInvalidArgument names the patch, loop and vertices that do not
+// form a cycle, a repeated cycle, or two cycles that run a shared curve the
+// same way.
 Status CyclesFromVertices(
     const NetworkGraph& graph,
     const std::vector<std::vector<std::vector<int32_t>>>& patches,
-    std::vector<NetworkCycle>* cycles);
+    std::vector<NetworkCycle>* cycles, const Control& control = {});
 
 // How SurfaceNetwork works. Every field, its meaning and default:
 //  weights          metric weights of each DOT patch. Default: squared
@@ -175,7 +182,8 @@ struct SurfaceOptions {
 // kInvalidArgument naming the first field out of range.
 Status CheckSurfaceOptions(const SurfaceOptions& options);
 
-enum class PatchStatus { kSurfaced, kFailed, kSkipped, kStopped };
+// A stop (cancel, deadline) ends the call: no patch is reported stopped.
+enum class PatchStatus { kSurfaced, kFailed, kSkipped };
 std::string_view PatchStatusName(PatchStatus s);  // "surfaced", ...
 
 struct PatchReport {
@@ -231,9 +239,9 @@ struct SurfaceResult {
   std::vector<int32_t> vertex_of_input;
 };
 
-// Never throws. Not OK: the network, the options, or a stop (cancel,
-// deadline; nothing kept). OK with patches kFailed: the surface without
-// them (report.closed false).
+// Never throws (out of memory is kResourceExhausted). Not OK: the network,
+// the options, or a stop (cancel, deadline; nothing kept). OK with patches
+// kFailed: the surface without them (report.closed false).
 SurfaceResult SurfaceNetwork(const CurveNetwork& network,
                              const SurfaceOptions& options = {},
                              const Control& control = {},

@@ -17,6 +17,7 @@
 #include "dot/fill_holes.h"
 #include "fill/fair_solver.h"
 #include "fill/patch_check.h"
+#include "fill/refine_limits.h"
 #include "mesh/topology.h"
 #include "util/run_control.h"
 
@@ -30,44 +31,6 @@ using FaceIndex = SurfaceMesh::Face_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 constexpr int kRings = 3;
-
-// Thrown from inside CGAL's refinement (which has no way to stop) by the
-// output iterator below; caught around the call.
-struct StopRefining {
-  Status status;  // cancel or deadline; OK when the vertex cap was reached
-};
-
-// Counts the vertices refinement adds, as CGAL adds them, and stops it when
-// there are more than `cap` or the run must stop.
-struct CountingVertexOut {
-  std::vector<VertexIndex>* out;
-  size_t cap;
-  RunTicker* ticker;
-
-  CountingVertexOut& operator*() { return *this; }
-  CountingVertexOut& operator++() { return *this; }
-  CountingVertexOut operator++(int) { return *this; }
-  CountingVertexOut& operator=(VertexIndex v) {
-    out->push_back(v);
-    if (out->size() > cap) throw StopRefining{OkStatus()};
-    if ((out->size() & 63) == 0 && !ticker->Poll()) {
-      throw StopRefining{ticker->status()};
-    }
-    return *this;
-  }
-};
-
-// The most vertices refinement may add to a hole of `rim` boundary vertices:
-// Liepa's default density gives about 0.1 rim^2 in a round hole, so this
-// leaves room for densities up to ~4x the default, and stays within the
-// memory budget (refinement and fairing use ~kBytesPerRefinedVertex each).
-constexpr int64_t kBytesPerRefinedVertex = 4096;
-size_t RefinedVertexCap(size_t rim, int64_t memory_budget_bytes) {
-  const size_t by_rim = 2 * rim * rim + 1000;
-  const size_t by_budget = static_cast<size_t>(
-      std::max<int64_t>(1000, memory_budget_bytes / kBytesPerRefinedVertex));
-  return std::min(by_rim, by_budget);
-}
 
 // The patch's neighbourhood: local vertex numbering and context faces.
 struct Neighbourhood {
@@ -228,7 +191,7 @@ Status RefineAndFairPatch(const MeshData& mesh, const MeshTopology& topology,
                        options.triangulate.memory_budget_bytes);
   try {
     PMP::refine(sm, patch_faces, std::back_inserter(new_faces),
-                CountingVertexOut{&new_vertices, cap, &ticker},
+                CountingVertexOut<VertexIndex>{&new_vertices, cap, &ticker},
                 CGAL::parameters::density_control_factor(options.density));
   } catch (const StopRefining& stop) {
     if (!stop.status.ok()) return stop.status;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -366,6 +367,11 @@ Status ToSurfaceMesh(const MeshData& m, const char* which, HausdorffMesh* sm) {
 
 Status HausdorffDistance(const MeshData& a, const MeshData& b,
                          double error_bound, double* distance) {
+  if (!(error_bound > 0) || !std::isfinite(error_bound)) {
+    return InvalidArgument(
+        "the Hausdorff error bound must be a positive "
+        "number");
+  }
   HausdorffMesh sa, sb;
   Status s = ToSurfaceMesh(a, "the first", &sa);
   if (s.ok()) s = ToSurfaceMesh(b, "the second", &sb);

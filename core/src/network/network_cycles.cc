@@ -16,6 +16,7 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <unordered_map>
 
 #include "dot/network.h"
 #include "util/run_control.h"
@@ -197,27 +198,29 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
   }
 }
 
-// Splits a face at junctions it passes more than once into simple loops.
+// Splits a face at junctions it passes more than once into simple loops
+// (a position per junction on the stack: linear in the face).
 std::vector<std::vector<CurveUse>> SplitAtRepeats(
     const NetworkGraph& g, const std::vector<CurveUse>& face) {
   std::vector<std::vector<CurveUse>> out;
   std::vector<CurveUse> stack;
   std::vector<int32_t> starts;  // start junction of each use on the stack
+  std::unordered_map<int32_t, size_t> at;  // junction -> its stack position
   for (const CurveUse& u : face) {
     const auto& vs = g.curves[u.curve].vertices;
     const int32_t from = u.reversed ? vs.back() : vs.front();
     const int32_t to = u.reversed ? vs.front() : vs.back();
+    at.emplace(from, stack.size());
     stack.push_back(u);
     starts.push_back(from);
     // Close a loop as soon as the walk returns to a junction on the stack.
-    for (size_t k = 0; k < starts.size(); ++k) {
-      if (starts[k] == to) {
-        out.emplace_back(stack.begin() + static_cast<long>(k), stack.end());
-        stack.resize(k);
-        starts.resize(k);
-        break;
-      }
-    }
+    const auto it = at.find(to);
+    if (it == at.end()) continue;
+    const size_t k = it->second;
+    out.emplace_back(stack.begin() + static_cast<long>(k), stack.end());
+    for (size_t j = k; j < starts.size(); ++j) at.erase(starts[j]);
+    stack.resize(k);
+    starts.resize(k);
   }
   return out;
 }
@@ -292,10 +295,11 @@ std::pair<int, int> AllFaces(const Rotation& rot) {
 // The normals' signs are a guess where the network bends: a wrong sign at
 // one junction merges the faces around it (an embedding of higher genus),
 // and a wrong link of the spanning tree flips a whole subtree. So flip
-// single junctions, then subtrees (`subtrees`: ring indices of each), while
-// that makes more faces simple, or more faces (a lower genus).
-Status ImproveSigns(Rotation* rot,
-                    const std::vector<std::vector<int32_t>>& subtrees,
+// single junctions, then subtrees (`order`: ring indices in the spanning
+// forest's preorder; `subtrees`: each non-root junction's range of it),
+// while that makes more faces simple, or more faces (a lower genus).
+Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
+                    const std::vector<std::pair<size_t, size_t>>& subtrees,
                     RunTicker* ticker) {
   auto set_ring = [&](int32_t r) {
     const auto& ring = rot->rings[r];
@@ -307,10 +311,6 @@ Status ImproveSigns(Rotation* rot,
     std::reverse(rot->rings[r].begin(), rot->rings[r].end());
     set_ring(r);
   };
-  // Subtree flips retrace every face: skipped on networks too large.
-  const bool global = static_cast<double>(subtrees.size()) *
-                          static_cast<double>(rot->before.size()) <
-                      2e8;
   bool stop = false;
   for (int pass = 0; pass < 8; ++pass) {
     bool improved = false;
@@ -343,17 +343,17 @@ Status ImproveSigns(Rotation* rot,
         }
       }
     }
-    if (global) {
+    if (!subtrees.empty()) {
       auto score = AllFaces(*rot);
-      for (const auto& subtree : subtrees) {
+      for (const auto& [first, last] : subtrees) {
         if (!ticker->Poll()) return ticker->status();
-        for (int32_t r : subtree) flip(r);
+        for (size_t k = first; k < last; ++k) flip(order[k]);
         const auto flipped = AllFaces(*rot);
         if (flipped > score) {
           score = flipped;
           improved = true;
         } else {
-          for (int32_t r : subtree) flip(r);
+          for (size_t k = first; k < last; ++k) flip(order[k]);
         }
       }
     }
@@ -424,24 +424,39 @@ Status FindNetworkCycles(const NetworkGraph& graph,
     }
   }
   if (graph.normals.empty()) {
-    // Each junction's subtree in the spanning tree, as ring indices.
-    std::map<int32_t, std::vector<int32_t>> children;
-    for (auto& [v, j] : junctions) {
-      if (j.parent >= 0) children[j.parent].push_back(v);
-    }
-    std::vector<std::vector<int32_t>> subtrees;
-    for (auto& [v, j] : junctions) {
-      if (j.parent < 0) continue;
-      std::vector<int32_t> subtree, stack = {v};
-      while (!stack.empty()) {
-        const int32_t x = stack.back();
-        stack.pop_back();
-        subtree.push_back(ring_of[x]);
-        for (int32_t c : children[x]) stack.push_back(c);
+    // The spanning forest in preorder: a junction's subtree is a range of
+    // it. Subtree flips retrace every face each: only where that stays
+    // affordable (junctions x darts < 2e8).
+    std::vector<int32_t> order;
+    std::vector<std::pair<size_t, size_t>> subtrees;
+    if (static_cast<double>(rot.rings.size()) *
+            static_cast<double>(rot.before.size()) <
+        2e8) {
+      std::map<int32_t, std::vector<int32_t>> children;
+      for (auto& [v, j] : junctions) {
+        if (j.parent >= 0) children[j.parent].push_back(v);
       }
-      subtrees.push_back(std::move(subtree));
+      for (auto& [root, jr] : junctions) {
+        if (jr.parent >= 0) continue;
+        // Iterative: (junction, where its range starts), closed on the way
+        // back up.
+        std::vector<std::pair<int32_t, size_t>> stack = {{root, SIZE_MAX}};
+        while (!stack.empty()) {
+          auto [x, start] = stack.back();
+          stack.pop_back();
+          if (start != SIZE_MAX) {  // all of x's subtree is in order now
+            if (junctions[x].parent >= 0) {
+              subtrees.emplace_back(start, order.size());
+            }
+            continue;
+          }
+          stack.push_back({x, order.size()});
+          order.push_back(ring_of[x]);
+          for (int32_t c : children[x]) stack.push_back({c, SIZE_MAX});
+        }
+      }
     }
-    const Status s = ImproveSigns(&rot, subtrees, &ticker);
+    const Status s = ImproveSigns(&rot, order, subtrees, &ticker);
     if (!s.ok()) return s;
   }
 
@@ -486,21 +501,33 @@ Status FindNetworkCycles(const NetworkGraph& graph,
 Status CyclesFromVertices(
     const NetworkGraph& graph,
     const std::vector<std::vector<std::vector<int32_t>>>& patches,
-    std::vector<NetworkCycle>* cycles) {
+    std::vector<NetworkCycle>* cycles, const Control& control) {
   cycles->clear();
-  // Directed edge (x, y) -> (curve, whether it runs the curve backward).
-  std::map<std::pair<int32_t, int32_t>, CurveUse> edge_use;
-  std::vector<int32_t> curve_ends(graph.vertices.size(), 0);
+  RunTicker ticker(control, "the given cycles");
+  const size_t n_vertices = graph.vertices.size();
+  // Neighbours along the curves, each directed edge's curve use, and how
+  // many curve ends each vertex is.
+  std::vector<std::vector<int32_t>> next(n_vertices);
+  std::unordered_map<uint64_t, CurveUse> edge_use;
+  auto key = [](int32_t a, int32_t b) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) |
+           static_cast<uint32_t>(b);
+  };
+  std::vector<int32_t> curve_ends(n_vertices, 0);
   for (size_t c = 0; c < graph.curves.size(); ++c) {
     const auto& vs = graph.curves[c].vertices;
     for (size_t k = 0; k + 1 < vs.size(); ++k) {
-      edge_use[{vs[k], vs[k + 1]}] = {static_cast<int32_t>(c), false};
-      edge_use[{vs[k + 1], vs[k]}] = {static_cast<int32_t>(c), true};
+      edge_use[key(vs[k], vs[k + 1])] = {static_cast<int32_t>(c), false};
+      edge_use[key(vs[k + 1], vs[k])] = {static_cast<int32_t>(c), true};
+      next[vs[k]].push_back(vs[k + 1]);
+      next[vs[k + 1]].push_back(vs[k]);
     }
     ++curve_ends[vs.front()];
     ++curve_ends[vs.back()];
   }
-  const int32_t inputs = static_cast<int32_t>(graph.vertex_of_input.size());
+  const auto inputs = static_cast<int64_t>(graph.vertex_of_input.size());
+  std::vector<char> seen(n_vertices, 0);
+  std::map<std::vector<std::pair<int32_t, bool>>, size_t> earlier;
   for (size_t p = 0; p < patches.size(); ++p) {
     NetworkCycle cycle;
     std::set<int32_t> in_patch;
@@ -509,6 +536,11 @@ Status CyclesFromVertices(
       const std::string where = "cycle " + std::to_string(p + 1) + ", loop " +
                                 std::to_string(l + 1) + ": ";
       if (listed.empty()) return InvalidArgument(where + "no vertices");
+      if (listed.size() > n_vertices) {
+        return InvalidArgument(
+            where + "lists " + std::to_string(listed.size()) +
+            " vertices; the network has " + std::to_string(n_vertices));
+      }
       std::vector<int32_t> ids;
       for (int32_t v : listed) {
         if (v < 0 || v >= inputs || graph.vertex_of_input[v] < 0) {
@@ -518,33 +550,50 @@ Status CyclesFromVertices(
         }
         ids.push_back(graph.vertex_of_input[v]);
       }
+      const std::set<int32_t> listed_set(ids.begin(), ids.end());
       // Fill in the vertices between listed ones along the one curve that
-      // joins them.
+      // joins them, checking for repeats as the walk grows (a loop visits
+      // each vertex once, so the walk never exceeds the network).
       std::vector<int32_t> walk;
+      auto release = [&] {
+        for (int32_t v : walk) seen[v] = 0;
+      };
       for (size_t k = 0; k < ids.size(); ++k) {
+        if (!ticker.Tick()) {
+          release();
+          return ticker.status();
+        }
         const int32_t from = ids[k], to = ids[(k + 1) % ids.size()];
         std::vector<std::vector<int32_t>> ways;
-        for (const auto& [e, use] : edge_use) {
-          if (e.first != from) continue;
+        // A way through another listed vertex is not this one.
+        auto passes_listed = [&](const std::vector<int32_t>& way) {
+          for (size_t j = 1; j + 1 < way.size(); ++j) {
+            if (listed_set.count(way[j])) return true;
+          }
+          return false;
+        };
+        for (int32_t first : next[from]) {
           std::vector<int32_t> way = {from};
-          int32_t prev = from, at = e.second;
+          int32_t prev = from, at = first;
           while (true) {
             way.push_back(at);
-            if (at == to || curve_ends[at] > 0 || at == from) break;
-            int32_t step = -1;
-            for (auto it = edge_use.lower_bound({at, INT32_MIN});
-                 it != edge_use.end() && it->first.first == at; ++it) {
-              if (it->first.second != prev) step = it->first.second;
-            }
+            // A curve's inner vertices have two neighbours; the walk stops
+            // at the target, a junction, or back where it began.
+            if (at == to || at == from || next[at].size() != 2) break;
+            const int32_t step =
+                next[at][0] == prev ? next[at][1] : next[at][0];
             prev = at;
             at = step;
           }
-          if (way.back() == to) ways.push_back(std::move(way));
+          if (way.back() == to && !passes_listed(way)) {
+            ways.push_back(std::move(way));
+          }
         }
         const std::string pair =
             "vertices " + std::to_string(listed[k] + 1) + " and " +
             std::to_string(listed[(k + 1) % ids.size()] + 1);
         if (ways.empty()) {
+          release();
           return InvalidArgument(where + "no curve joins " + pair);
         }
         // An edge between them is the way (a loop with no junction can
@@ -555,18 +604,29 @@ Status CyclesFromVertices(
             break;
           }
         }
-        if (ways.size() > 1 && ids.size() > 1) {
+        if (ways.size() > 1) {
+          release();
           return InvalidArgument(where + std::to_string(ways.size()) +
-                                 " curves join " + pair +
+                                 " ways along the curves join " + pair +
                                  ": list a vertex between them");
         }
-        walk.insert(walk.end(), ways[0].begin(), ways[0].end() - 1);
+        for (size_t j = 0; j + 1 < ways[0].size(); ++j) {
+          const int32_t v = ways[0][j];
+          if (seen[v]) {
+            release();
+            return InvalidArgument(where +
+                                   "passes a vertex twice; a loop of a "
+                                   "patch is a simple cycle");
+          }
+          seen[v] = 1;
+          walk.push_back(v);
+        }
       }
-      std::set<int32_t> distinct(walk.begin(), walk.end());
-      if (distinct.size() != walk.size()) {
-        return InvalidArgument(where +
-                               "passes a vertex twice; a loop of a "
-                               "patch is a simple cycle");
+      release();
+      if (walk.size() < 3) {
+        return InvalidArgument(where + "runs along " +
+                               std::to_string(walk.size()) +
+                               " vertices; a loop needs at least 3");
       }
       for (int32_t v : walk) {
         if (!in_patch.insert(v).second) {
@@ -575,15 +635,16 @@ Status CyclesFromVertices(
                                  "of the cycle");
         }
       }
-      // Start at a junction (a curve end) and read off whole curves.
+      // Start at a curve end (every loop has one: a closed curve's first
+      // vertex is its end) and read off whole curves.
       size_t start = 0;
       while (start < walk.size() && curve_ends[walk[start]] == 0) ++start;
-      std::vector<CurveUse> loop;
       if (start == walk.size()) start = 0;
+      std::vector<CurveUse> loop;
       const size_t n = walk.size();
       for (size_t k = 0; k < n;) {
         const int32_t x = walk[(start + k) % n];
-        const CurveUse use = edge_use.at({x, walk[(start + k + 1) % n]});
+        const CurveUse use = edge_use.at(key(x, walk[(start + k + 1) % n]));
         const auto& vs = graph.curves[use.curve].vertices;
         const int32_t expected = use.reversed ? vs.back() : vs.front();
         if (x != expected) {
@@ -600,7 +661,40 @@ Status CyclesFromVertices(
       return InvalidArgument("cycle " + std::to_string(p + 1) +
                              " has no loops");
     }
+    std::vector<std::pair<int32_t, bool>> uses;
+    for (const auto& loop : cycle.loops) {
+      for (const CurveUse& u : loop) uses.push_back({u.curve, u.reversed});
+    }
+    std::sort(uses.begin(), uses.end());
+    const auto [it, added] = earlier.emplace(uses, p);
+    if (!added) {
+      return InvalidArgument("cycle " + std::to_string(p + 1) +
+                             " repeats cycle " +
+                             std::to_string(it->second + 1));
+    }
     cycles->push_back(std::move(cycle));
+  }
+  // Patches on a curve they both bound run it once each way, so that the
+  // surface is oriented (three or more: a non-manifold network, any way).
+  std::vector<std::vector<std::pair<size_t, bool>>> runs(graph.curves.size());
+  for (size_t p = 0; p < cycles->size(); ++p) {
+    for (const auto& loop : (*cycles)[p].loops) {
+      for (const CurveUse& u : loop) runs[u.curve].push_back({p, u.reversed});
+    }
+  }
+  for (size_t c = 0; c < runs.size(); ++c) {
+    const auto& r = runs[c];
+    if (r.size() == 2 && r[0].second == r[1].second) {
+      const auto& vs = graph.curves[c].vertices;
+      const int32_t a =
+          graph.input_of_vertex[r[0].second ? vs.back() : vs.front()];
+      return InvalidArgument(
+          "cycles " + std::to_string(r[0].first + 1) + " and " +
+          std::to_string(r[1].first + 1) + " both run the curve from vertex " +
+          std::to_string(a + 1) +
+          " the same way; the patches of one surface run a curve they "
+          "share once each way (list one of them the other way round)");
+    }
   }
   return OkStatus();
 }

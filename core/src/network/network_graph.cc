@@ -59,13 +59,15 @@ Status Weld(const CurveNetwork& net, NetworkGraph* g) {
   }
   std::map<std::tuple<double, double, double>, int32_t> by_point;
   g->vertex_of_input.assign(n, -1);
-  for (size_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
-    const Vec3& p = net.vertices[i];
-    if (!IsFinite(p)) {
+  for (size_t i = 0; i < n; ++i) {  // unused ones too: the output keeps them
+    if (!IsFinite(net.vertices[i])) {
       return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
                              " has a coordinate that is not a finite number");
     }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    const Vec3& p = net.vertices[i];
     const auto key = std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
                                      p.z == 0 ? 0.0 : p.z);  // -0 == 0
     auto [it, added] =
@@ -243,26 +245,38 @@ void TraceCurves(const std::vector<Edge>& edges, NetworkGraph* g) {
   }
 }
 
-// Curves with a free end, pruned until none is left.
+// Curves with a free end, pruned until none is left: a queue of vertices
+// whose count of curve ends dropped to one, each curve pruned once (linear
+// in the curves, whatever order the file gives them in).
 void PruneDangling(NetworkGraph* g) {
   std::vector<int32_t> ends(g->vertices.size(), 0);
-  for (const NetworkCurve& c : g->curves) {
+  std::vector<std::vector<int32_t>> curves_at(g->vertices.size());
+  for (size_t i = 0; i < g->curves.size(); ++i) {
+    const NetworkCurve& c = g->curves[i];
     ++ends[c.vertices.front()];
     ++ends[c.vertices.back()];
+    if (c.closed()) continue;
+    curves_at[c.vertices.front()].push_back(static_cast<int32_t>(i));
+    curves_at[c.vertices.back()].push_back(static_cast<int32_t>(i));
   }
   std::vector<char> gone(g->curves.size(), 0);
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (size_t i = 0; i < g->curves.size(); ++i) {
+  std::vector<int32_t> queue;
+  for (size_t v = 0; v < ends.size(); ++v) {
+    if (ends[v] == 1) queue.push_back(static_cast<int32_t>(v));
+  }
+  while (!queue.empty()) {
+    const int32_t v = queue.back();
+    queue.pop_back();
+    if (ends[v] != 1) continue;
+    for (int32_t i : curves_at[v]) {
+      if (gone[i]) continue;
+      gone[i] = 1;
+      g->dangling.push_back(i);
       const NetworkCurve& c = g->curves[i];
-      if (gone[i] || c.closed()) continue;
-      if (ends[c.vertices.front()] == 1 || ends[c.vertices.back()] == 1) {
-        gone[i] = 1;
-        --ends[c.vertices.front()];
-        --ends[c.vertices.back()];
-        g->dangling.push_back(static_cast<int32_t>(i));
-        changed = true;
+      for (int32_t end : {c.vertices.front(), c.vertices.back()}) {
+        if (--ends[end] == 1) queue.push_back(end);
       }
+      break;  // v had one end left: this curve's
     }
   }
   std::sort(g->dangling.begin(), g->dangling.end());

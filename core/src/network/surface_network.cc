@@ -13,11 +13,14 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <new>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <unordered_map>
 
 #include "dot/validate.h"
+#include "fill/refine_limits.h"
 #include "network/surface_steps.h"
 #include "util/run_control.h"
 
@@ -27,11 +30,48 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Chord = std::pair<int32_t, int32_t>;
 
-// Bytes refinement and fairing take per new vertex (as FillHoles counts).
-constexpr int64_t kBytesPerRefinedVertex = 4096;
 constexpr int kResolveRounds = 4;
 
 Chord Key(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
+
+// Adds `why` to a patch's reason (a fan's reason stays when its refinement
+// is undone).
+void Note(PatchReport* r, const std::string& why) {
+  r->reason += (r->reason.empty() ? "" : "; ") + why;
+}
+
+// Patches with a face on an edge that is not a curve's and has more than
+// two faces, or that two faces run the same way (refinement's flips can
+// make a chord another patch or a curve already has).
+std::set<int32_t> SharedEdgePatches(const MeshData& m,
+                                    const std::vector<int32_t>& owner,
+                                    const std::set<Chord>& curve_edges) {
+  std::map<Chord, std::vector<size_t>> faces_on;
+  for (size_t f = 0; f < m.triangles.size(); ++f) {
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      faces_on[Key(t[k], t[(k + 1) % 3])].push_back(f);
+  }
+  std::set<int32_t> out;
+  for (const auto& [edge, faces] : faces_on) {
+    if (faces.size() < 2 || curve_edges.count(edge)) continue;
+    bool same_way = false;
+    if (faces.size() == 2) {
+      auto runs = [&](size_t f) {
+        const Triangle& t = m.triangles[f];
+        for (int k = 0; k < 3; ++k) {
+          if (t[k] == edge.first && t[(k + 1) % 3] == edge.second) return true;
+        }
+        return false;
+      };
+      same_way = runs(faces[0]) == runs(faces[1]);
+    }
+    if (faces.size() > 2 || same_way) {
+      for (size_t f : faces) out.insert(owner[f]);
+    }
+  }
+  return out;
+}
 
 struct Work {
   std::vector<std::vector<int32_t>> loops;  // graph vertex ids
@@ -212,8 +252,7 @@ Status FairEachPatch(const NetworkGraph& g, const SurfaceOptions& options,
                         control, &faired, &why);
     if (!s.ok()) return s;
     if (!faired) {
-      (*reports)[p].reason += (*reports)[p].reason.empty() ? "" : "; ";
-      (*reports)[p].reason += "not faired: " + why;
+      Note(&(*reports)[p], "not faired: " + why);
       continue;
     }
     PatchMesh faired_patch = w.mesh;
@@ -228,8 +267,7 @@ Status FairEachPatch(const NetworkGraph& g, const SurfaceOptions& options,
     if (!s.ok()) return s;
     if (pairs > 0) {
       std::swap(w.mesh, faired_patch);
-      (*reports)[p].reason += (*reports)[p].reason.empty() ? "" : "; ";
-      (*reports)[p].reason += "fairing undone: it made faces cross";
+      Note(&(*reports)[p], "fairing undone: it made faces cross");
     } else {
       (*reports)[p].faired = true;
     }
@@ -264,16 +302,15 @@ std::string_view PatchStatusName(PatchStatus s) {
       return "failed";
     case PatchStatus::kSkipped:
       return "skipped";
-    case PatchStatus::kStopped:
-      return "stopped";
   }
   return "unknown";
 }
 
-SurfaceResult SurfaceNetwork(const CurveNetwork& network,
-                             const SurfaceOptions& options,
-                             const Control& control,
-                             const SurfaceProgressFn& on_progress) {
+namespace {
+
+SurfaceResult Surface(const CurveNetwork& network,
+                      const SurfaceOptions& options, const Control& control,
+                      const SurfaceProgressFn& on_progress) {
   const auto t_start = Clock::now();
   SurfaceResult out;
   SurfaceReport& report = out.report;
@@ -311,7 +348,7 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
   std::vector<NetworkCycle> cycles;
   s = options.cycles.empty()
           ? FindNetworkCycles(g, &cycles, &report.notes, control)
-          : CyclesFromVertices(g, options.cycles, &cycles);
+          : CyclesFromVertices(g, options.cycles, &cycles, control);
   if (!s.ok()) return fail(s);
   report.cycles_ms = MsSince(t);
   if (cycles.empty()) {
@@ -504,7 +541,6 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
   }
   for (int p : todo) {
     PatchReport& r = report.patches[p];
-    report.triangulate_ms += r.triangulate_ms;
     if (work[p].live) {
       r.status = PatchStatus::kSurfaced;
       work[p].mesh = work[p].dot;
@@ -516,32 +552,34 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
   }
   report.triangulate_ms = MsSince(t);
 
-  // Refinement, patch by patch; patches past the memory budget keep their
-  // DOT faces. A refined patch that crosses another is put back.
+  // Refinement, patch by patch, each within its share of the memory
+  // budget. A refined patch that crosses another, or that made a chord on
+  // an edge another face already has, is put back.
+  std::set<Chord> curve_edges;
+  for (const NetworkCurve& c : g.curves) {
+    for (size_t k = 0; k + 1 < c.vertices.size(); ++k) {
+      curve_edges.insert(Key(c.vertices[k], c.vertices[k + 1]));
+    }
+  }
   std::vector<int> live;
   for (int p : todo) {
     if (work[p].live) live.push_back(p);
   }
   if (options.stage != FillStage::kTriangulate) {
     t = Clock::now();
+    // Each patch gets its share of the memory budget (what refinement and
+    // fairing take per new vertex), so the whole network stays within it.
+    const int64_t share =
+        options.triangulate.memory_budget_bytes /
+        std::max<int64_t>(1, static_cast<int64_t>(live.size()));
     s = ForEachPatch(options, live, [&](int p) {
-      return RefinePatch(g, options, patch_control, first_new, &work[p].mesh,
-                         &report.patches[p]);
+      const size_t cap = RefinedVertexCap(
+          static_cast<size_t>(report.patches[p].boundary_vertices), share,
+          /*floor=*/0);
+      return RefinePatch(g, options, patch_control, first_new, cap,
+                         &work[p].mesh, &report.patches[p]);
     });
     if (!s.ok()) return fail(s);
-    int64_t total = 0;
-    const int64_t cap =
-        options.triangulate.memory_budget_bytes / kBytesPerRefinedVertex;
-    for (int p : live) {
-      total += static_cast<int64_t>(work[p].mesh.new_vertices.size());
-      if (total > cap) {
-        work[p].mesh = work[p].dot;
-        report.patches[p].refined_vertices = 0;
-        report.patches[p].reason =
-            "not refined: the network's refined vertices would pass the "
-            "memory budget";
-      }
-    }
     for (int round = 0;; ++round) {
       std::vector<int32_t> owner, first;
       const MeshData m = Assemble(g, work, true, &owner, &first);
@@ -549,12 +587,15 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
       int64_t pairs = 0;
       s = CrossingPatches(m, owner, control, &crossing, &pairs);
       if (!s.ok()) return fail(s);
-      if (pairs == 0) break;
+      const std::set<int32_t> shared = SharedEdgePatches(m, owner, curve_edges);
+      if (pairs == 0 && shared.empty()) break;
+      crossing.insert(shared.begin(), shared.end());
       for (int32_t p : crossing) {
-        if (work[p].mesh.new_vertices.empty()) continue;
+        if (report.patches[p].refined_vertices == 0) continue;
         work[p].mesh = work[p].dot;
         report.patches[p].refined_vertices = 0;
-        report.patches[p].reason = "refinement undone: it made faces cross";
+        Note(&report.patches[p],
+             "refinement undone: it made faces cross or share an edge");
       }
       if (round == kResolveRounds) {
         return fail(MakeStatus(StatusCode::kInternal,
@@ -595,7 +636,7 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
         const int32_t end =
             first[p] + static_cast<int32_t>(work[p].mesh.new_vertices.size());
         for (int32_t v = first[p]; v < end; ++v) fixed[v] = 1;
-        report.patches[p].reason = "fairing undone: it made faces cross";
+        Note(&report.patches[p], "fairing undone: it made faces cross");
       }
       why =
           "faces still crossed after " + std::to_string(round + 1) + " rounds";
@@ -677,6 +718,26 @@ SurfaceResult SurfaceNetwork(const CurveNetwork& network,
     }
   }
   report.total_ms = MsSince(t_start);
+  return out;
+}
+
+}  // namespace
+
+SurfaceResult SurfaceNetwork(const CurveNetwork& network,
+                             const SurfaceOptions& options,
+                             const Control& control,
+                             const SurfaceProgressFn& on_progress) {
+  // Memory runs out as an error of this call, not of the process.
+  SurfaceResult out;
+  try {
+    return Surface(network, options, control, on_progress);
+  } catch (const std::bad_alloc&) {
+    out.status = MakeStatus(StatusCode::kResourceExhausted,
+                            "out of memory surfacing the network");
+  } catch (const std::exception& e) {
+    out.status = MakeStatus(StatusCode::kInternal,
+                            std::string("surfacing failed: ") + e.what());
+  }
   return out;
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "dot/triangulate.h"
+#include "fill/refine_limits.h"
 #include "network/surface_steps.h"
 #include "util/run_control.h"
 
@@ -77,28 +78,6 @@ Problem PatchProblem(const NetworkGraph& graph,
   }
   return p;
 }
-
-// Thrown from inside CGAL's refinement (which has no way to stop).
-struct StopRefining {
-  Status status;  // cancel or deadline; OK when the vertex cap was reached
-};
-
-struct CountingVertexOut {
-  std::vector<VertexIndex>* out;
-  size_t cap;
-  RunTicker* ticker;
-  CountingVertexOut& operator*() { return *this; }
-  CountingVertexOut& operator++() { return *this; }
-  CountingVertexOut operator++(int) { return *this; }
-  CountingVertexOut& operator=(VertexIndex v) {
-    out->push_back(v);
-    if (out->size() > cap) throw StopRefining{OkStatus()};
-    if ((out->size() & 63) == 0 && !ticker->Poll()) {
-      throw StopRefining{ticker->status()};
-    }
-    return *this;
-  }
-};
 
 }  // namespace
 
@@ -169,8 +148,8 @@ Status FanPatch(const NetworkGraph& graph,
 }
 
 Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
-                   const Control& control, int32_t first_new, PatchMesh* patch,
-                   PatchReport* report) {
+                   const Control& control, int32_t first_new, size_t cap,
+                   PatchMesh* patch, PatchReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   RunTicker ticker(control, "refinement");
   if (!ticker.Poll()) return ticker.status();
@@ -215,21 +194,18 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
     }
     faces.push_back(f);
   }
-  // Liepa's default density gives about 0.1 n^2 vertices in a round
-  // cycle of n; room for densities up to ~4x that.
-  const size_t rim = static_cast<size_t>(report->boundary_vertices);
-  const size_t cap = 2 * rim * rim + 1000;
   std::vector<FaceIndex> new_faces;
   std::vector<VertexIndex> new_vertices;
   try {
     PMP::refine(sm, faces, std::back_inserter(new_faces),
-                CountingVertexOut{&new_vertices, cap, &ticker},
+                CountingVertexOut<VertexIndex>{&new_vertices, cap, &ticker},
                 CGAL::parameters::density_control_factor(options.density));
   } catch (const StopRefining& stop) {
     if (!stop.status.ok()) return stop.status;
     report->refine_ms = MsSince(t0);
     report->reason = "refinement stopped past " + std::to_string(cap) +
-                     " new vertices: kept the unrefined patch";
+                     " new vertices, this patch's share of the memory "
+                     "budget: kept the unrefined patch";
     return OkStatus();
   }
   // Curve vertices keep their ids; the patch's own (a fan's centre, and

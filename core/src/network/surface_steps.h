@@ -39,10 +39,11 @@ Status FanPatch(const NetworkGraph& graph,
                 int32_t first_new, PatchMesh* patch);
 
 // Liepa refinement of one patch alone, its boundary (the curves) kept:
-// new vertices inside only, so neighbours still meet on the curves.
+// new vertices inside only, so neighbours still meet on the curves. Past
+// `cap` new vertices the patch stays unrefined (its reason says so).
 Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
-                   const Control& control, int32_t first_new, PatchMesh* patch,
-                   PatchReport* report);
+                   const Control& control, int32_t first_new, size_t cap,
+                   PatchMesh* patch, PatchReport* report);
 
 // Fairs the free vertices of `mesh` (ids >= first_free, those refinement
 // added) in one system over the whole mesh, every other vertex fixed, and

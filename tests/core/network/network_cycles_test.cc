@@ -138,9 +138,10 @@ TEST(NetworkCyclesTest, UserCyclesByCornersOrEveryVertex) {
   NetworkGraph g;
   ASSERT_TRUE(BuildNetworkGraph(net, &g).ok());
   std::vector<NetworkCycle> cycles;
-  // The z = 0 face by its corners, and the y = 0 face by every vertex.
+  // The z = 0 face by its corners, and the y = 0 face by every vertex,
+  // each running the edge they share (0-1) its own way.
   ASSERT_TRUE(CyclesFromVertices(
-                  g, {{{0, 1, 3, 2}}, {{0, 8, 1, 12, 5, 16, 4, 10}}}, &cycles)
+                  g, {{{0, 1, 3, 2}}, {{0, 10, 4, 16, 5, 12, 1, 8}}}, &cycles)
                   .ok());
   ASSERT_EQ(cycles.size(), 2u);
   EXPECT_EQ(cycles[0].loops[0].size(), 4u);
@@ -151,6 +152,17 @@ TEST(NetworkCyclesTest, UserCyclesByCornersOrEveryVertex) {
       << s.message;
   s = CyclesFromVertices(g, {{{0, 1, 99}}}, &cycles);
   EXPECT_NE(s.message.find("vertex 100"), std::string::npos) << s.message;
+  // Both faces running the edge 0-1 the same way: not one surface.
+  s = CyclesFromVertices(g, {{{0, 1, 3, 2}}, {{0, 1, 5, 4}}}, &cycles);
+  EXPECT_NE(s.message.find("the same way"), std::string::npos) << s.message;
+  s = CyclesFromVertices(g, {{{0, 1, 3, 2}}, {{1, 3, 2, 0}}}, &cycles);
+  EXPECT_NE(s.message.find("repeats cycle 1"), std::string::npos) << s.message;
+  // A loop with no junction, listed by three of its vertices.
+  NetworkGraph rim;
+  ASSERT_TRUE(BuildNetworkGraph(CylinderNetwork(20, false), &rim).ok());
+  ASSERT_TRUE(CyclesFromVertices(rim, {{{5, 10, 15}}}, &cycles).ok())
+      << s.message;
+  EXPECT_EQ(LoopVertices(rim, cycles[0].loops[0]).size(), 20u);
 }
 
 }  // namespace

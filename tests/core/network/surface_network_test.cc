@@ -148,9 +148,9 @@ TEST(SurfaceNetworkTest, NonManifoldNetworkFromUserCycles) {
   auto quad = [&](int32_t a, int32_t b, int32_t c, int32_t d) {
     soup.faces.push_back({a, b, c, d});
   };
-  quad(0, 3, 2, 1);              // x = 0
-  quad(8, 9, 10, 11);            // x = 1
-  quad(4, 5, 6, 7);              // the wall
+  quad(0, 1, 2, 3);    // x = 0 (each face runs a curve it shares with a
+  quad(8, 11, 10, 9);  // x = 1  side the other way round)
+  quad(4, 5, 6, 7);    // the wall
   for (int i = 0; i < 2; ++i) {  // the halves of the four sides
     const int32_t l = 4 * i, r = 4 * (i + 1);
     for (int k = 0; k < 4; ++k) {
