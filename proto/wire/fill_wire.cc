@@ -9,24 +9,29 @@
 
 namespace dot::wire {
 
+Status FillStageFromWire(v1::FillStage wire, FillStage* stage) {
+  switch (wire) {
+    case v1::FILL_STAGE_TRIANGULATE:
+      *stage = FillStage::kTriangulate;
+      return OkStatus();
+    case v1::FILL_STAGE_REFINE:
+      *stage = FillStage::kRefine;
+      return OkStatus();
+    case v1::FILL_STAGE_DEFAULT:
+    case v1::FILL_STAGE_FAIR:
+      *stage = FillStage::kFair;
+      return OkStatus();
+    default:
+      return InvalidArgument("unknown stage " + std::to_string(wire));
+  }
+}
+
 Status FillOptionsFromWire(const v1::FillOptions& wire, FillOptions* o) {
   *o = {};
   if (wire.has_weights()) o->weights = FromWire(wire.weights());
   o->scale_free_weights = !wire.absolute_weights();
-  switch (wire.stage()) {
-    case v1::FILL_STAGE_TRIANGULATE:
-      o->stage = FillStage::kTriangulate;
-      break;
-    case v1::FILL_STAGE_REFINE:
-      o->stage = FillStage::kRefine;
-      break;
-    case v1::FILL_STAGE_DEFAULT:
-    case v1::FILL_STAGE_FAIR:
-      o->stage = FillStage::kFair;
-      break;
-    default:
-      return InvalidArgument("unknown fill stage");
-  }
+  const Status stage = FillStageFromWire(wire.stage(), &o->stage);
+  if (!stage.ok()) return stage;
   o->selection.max_edges =
       static_cast<int>(std::min<uint32_t>(wire.max_hole_edges(), INT32_MAX));
   o->selection.max_diameter = wire.max_hole_diameter();

@@ -28,6 +28,9 @@ Status FillAnswerFromWire(const v1::FillOptions& wire, v1::FillAnswer* answer);
 void FillReportToWire(const FillReport& report, const RepairReport& repair,
                       size_t input_vertices, size_t input_faces,
                       v1::FillReport* out);
+// The stage of a FillHoles or SurfaceNetwork request (unset: kFair);
+// kInvalidArgument for a value this server does not know.
+Status FillStageFromWire(v1::FillStage wire, FillStage* stage);
 v1::HoleStatus HoleStatusToWire(HoleStatus status);
 v1::Escalation EscalationToWire(Escalation escalation);
 v1::FillPhase FillPhaseToWire(FillPhase phase);

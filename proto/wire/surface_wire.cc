@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "wire/fill_wire.h"
 #include "wire/wire.h"
 
 namespace dot::wire {
@@ -12,20 +13,8 @@ Status SurfaceOptionsFromWire(const v1::SurfaceOptions& wire,
   *o = {};
   if (wire.has_weights()) o->weights = FromWire(wire.weights());
   o->scale_free_weights = !wire.absolute_weights();
-  switch (wire.stage()) {
-    case v1::FILL_STAGE_TRIANGULATE:
-      o->stage = FillStage::kTriangulate;
-      break;
-    case v1::FILL_STAGE_REFINE:
-      o->stage = FillStage::kRefine;
-      break;
-    case v1::FILL_STAGE_DEFAULT:
-    case v1::FILL_STAGE_FAIR:
-      o->stage = FillStage::kFair;
-      break;
-    default:
-      return InvalidArgument("unknown stage " + std::to_string(wire.stage()));
-  }
+  const Status stage = FillStageFromWire(wire.stage(), &o->stage);
+  if (!stage.ok()) return stage;
   if (wire.density() != 0) o->density = wire.density();  // 0: the default
   if (wire.has_fairing_continuity()) {
     o->fairing_continuity = wire.fairing_continuity();
