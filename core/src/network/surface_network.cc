@@ -57,10 +57,11 @@ std::set<int32_t> SharedEdgePatches(const MeshData& m,
     if (faces.size() < 2 || curve_edges.count(edge)) continue;
     bool same_way = false;
     if (faces.size() == 2) {
-      auto runs = [&](size_t f) {
+      const Chord e = edge;  // (C++17 lambdas cannot capture a binding)
+      auto runs = [&m, e](size_t f) {
         const Triangle& t = m.triangles[f];
         for (int k = 0; k < 3; ++k) {
-          if (t[k] == edge.first && t[(k + 1) % 3] == edge.second) return true;
+          if (t[k] == e.first && t[(k + 1) % 3] == e.second) return true;
         }
         return false;
       };
