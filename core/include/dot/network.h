@@ -119,9 +119,11 @@ std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
 // cycle, so every curve that is not dangling bounds two patches, one on
 // each side, the cycles consistently oriented. A closed curve alone (no
 // junction) bounds one patch. Manifold networks of any genus; a network
-// where three patches meet on one curve needs CyclesFromVertices.
-// `notes` receives what was found odd (a face that runs along a curve both
-// ways: a seam, left out).
+// where three patches meet on one curve needs CyclesFromVertices. A face
+// that runs a path of curves one way and then back (a tube's seam, a curve
+// from a hole to its rim) is a cycle too: SurfaceNetwork cuts it in two
+// pieces by a new path whose points are new, faired vertices. `notes`
+// receives the faces left out (others that run a curve twice).
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes = nullptr,

@@ -16,9 +16,11 @@
 #include <map>
 #include <queue>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "dot/network.h"
+#include "network/seam.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -232,64 +234,79 @@ struct Rotation {
   int32_t Next(int32_t leave) const { return before[leave ^ 1]; }
 };
 
-bool Simple(const std::vector<CurveUse>& face) {
-  std::set<int32_t> curves;
-  for (const CurveUse& u : face) {
-    if (!curves.insert(u.curve).second) return false;
+// The faces of a rotation system (or those around a junction): how many
+// run no curve twice, how many run only a seam one way and back (which
+// SurfaceNetwork surfaces too), and all.
+struct FaceCount {
+  int simple = 0, seams = 0, faces = 0;
+  void Add(const std::vector<CurveUse>& face) {
+    ++faces;
+    if (!RunsACurveTwice(face)) {
+      ++simple;
+    } else if (IsSeamLoop(face)) {
+      ++seams;
+    }
   }
-  return true;
+};
+
+// First more simple faces, then more faces (a lower genus): a wrong sign
+// merges faces. Counting seams here too would trade true faces for merged
+// ones (measured on a genus-3 network).
+bool MoreSimple(const FaceCount& a, const FaceCount& b) {
+  return std::tie(a.simple, a.faces) > std::tie(b.simple, b.faces);
+}
+// Then, from there, faces made surfaceable, none lost (three rims and two
+// seams: two tubes rather than a disk inside and one face with both).
+bool MoreSurfaceable(const FaceCount& a, const FaceCount& b) {
+  return a.faces >= b.faces && a.simple + a.seams > b.simple + b.seams;
 }
 
-// Faces through the darts arriving at a junction: their count and how many
-// run along no curve twice.
-std::pair<int, int> FacesAt(const Rotation& rot,
-                            const std::vector<int32_t>& ring, RunTicker* ticker,
-                            bool* stop) {
-  std::set<int32_t> seen;
-  int faces = 0, simple = 0;
+// The face that leaves along dart `start`, each dart marked in `seen`.
+template <typename Seen>
+void TraceFace(const Rotation& rot, int32_t start, Seen* seen,
+               std::vector<CurveUse>* face) {
+  face->clear();
+  int32_t d = start;
+  do {
+    (*seen)[d] = 1;
+    face->push_back({d / 2, (d & 1) == 1});
+    d = rot.Next(d);
+  } while (d != start);
+}
+
+// Faces through the darts arriving at a junction: how many are
+// surfaceable, and their count.
+FaceCount FacesAt(const Rotation& rot, const std::vector<int32_t>& ring,
+                  RunTicker* ticker, bool* stop) {
+  std::map<int32_t, char> seen;
+  FaceCount count;
+  std::vector<CurveUse> face;
   for (int32_t a : ring) {
     const int32_t start = a ^ 1;  // leaves the other end, arrives here
     if (seen.count(start)) continue;
-    ++faces;
-    std::set<int32_t> curves;
-    bool is_simple = true;
-    int32_t d = start;
-    do {
-      if (!ticker->Tick()) {
-        *stop = true;
-        return {0, 0};
-      }
-      seen.insert(d);
-      if (!curves.insert(d / 2).second) is_simple = false;
-      d = rot.Next(d);
-    } while (d != start);
-    simple += is_simple;
+    TraceFace(rot, start, &seen, &face);
+    if (!ticker->Tick()) {
+      *stop = true;
+      return {};
+    }
+    count.Add(face);
   }
-  return {simple, faces};
+  return count;
 }
 
-// Faces of the whole rotation system: (simple ones, all).
-std::pair<int, int> AllFaces(const Rotation& rot) {
+// Faces of the whole rotation system: (surfaceable ones, all).
+FaceCount AllFaces(const Rotation& rot) {
   std::vector<char> seen(rot.before.size(), 0);
-  int faces = 0, simple = 0;
-  std::vector<int32_t> curves;
+  FaceCount count;
+  std::vector<CurveUse> face;
   for (const auto& ring : rot.rings) {
     for (int32_t start : ring) {
       if (seen[start]) continue;
-      ++faces;
-      curves.clear();
-      int32_t d = start;
-      do {
-        seen[d] = 1;
-        curves.push_back(d / 2);
-        d = rot.Next(d);
-      } while (d != start);
-      std::sort(curves.begin(), curves.end());
-      simple +=
-          std::adjacent_find(curves.begin(), curves.end()) == curves.end();
+      TraceFace(rot, start, &seen, &face);
+      count.Add(face);
     }
   }
-  return {simple, faces};
+  return count;
 }
 
 // The normals' signs are a guess where the network bends: a wrong sign at
@@ -297,9 +314,10 @@ std::pair<int, int> AllFaces(const Rotation& rot) {
 // and a wrong link of the spanning tree flips a whole subtree. So flip
 // single junctions, then subtrees (`order`: ring indices in the spanning
 // forest's preorder; `subtrees`: each non-root junction's range of it),
-// while that makes more faces simple, or more faces (a lower genus).
+// while that makes more faces surfaceable, or more faces (a lower genus).
 Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
                     const std::vector<std::pair<size_t, size_t>>& subtrees,
+                    bool (*better)(const FaceCount&, const FaceCount&),
                     RunTicker* ticker) {
   auto set_ring = [&](int32_t r) {
     const auto& ring = rot->rings[r];
@@ -320,7 +338,7 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
       flip(static_cast<int32_t>(r));
       const auto after = FacesAt(*rot, rot->rings[r], ticker, &stop);
       if (stop) return ticker->status();
-      if (after > before) {
+      if (better(after, before)) {
         improved = true;
       } else {
         flip(static_cast<int32_t>(r));
@@ -335,7 +353,7 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
         set_ring(static_cast<int32_t>(r));
         const auto new_score = FacesAt(*rot, ring, ticker, &stop);
         if (stop) return ticker->status();
-        if (new_score > old_score) {
+        if (better(new_score, old_score)) {
           improved = true;
         } else {
           std::swap(ring[k], ring[l]);
@@ -349,7 +367,7 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
         if (!ticker->Poll()) return ticker->status();
         for (size_t k = first; k < last; ++k) flip(order[k]);
         const auto flipped = AllFaces(*rot);
-        if (flipped > score) {
+        if (better(flipped, score)) {
           score = flipped;
           improved = true;
         } else {
@@ -456,8 +474,13 @@ Status FindNetworkCycles(const NetworkGraph& graph,
         }
       }
     }
-    const Status s = ImproveSigns(&rot, order, subtrees, &ticker);
+    Status s = ImproveSigns(&rot, order, subtrees, MoreSimple, &ticker);
     if (!s.ok()) return s;
+    const FaceCount count = AllFaces(rot);
+    if (count.simple + count.seams < count.faces) {
+      s = ImproveSigns(&rot, order, subtrees, MoreSurfaceable, &ticker);
+      if (!s.ok()) return s;
+    }
   }
 
   std::vector<char> used(rot.before.size(), 0);
@@ -471,16 +494,24 @@ Status FindNetworkCycles(const NetworkGraph& graph,
         used[d] = 1;
         face.push_back({d / 2, (d & 1) == 1});
       }
-      if (!Simple(face)) {
+      if (RunsACurveTwice(face)) {
+        // A seam face is surfaced in two pieces (SurfaceNetwork).
+        SeamSplit split;
+        std::string why;
+        if (SplitSeam(graph, face, &split, &why)) {
+          std::vector<int32_t> key;
+          for (const CurveUse& u : face) key.push_back(u.curve);
+          std::sort(key.begin(), key.end());
+          if (seen_loops.insert(key).second) cycles->push_back({{face}});
+          continue;
+        }
         if (notes != nullptr) {
           std::string ids;
           for (const CurveUse& u : face) {
             ids += (ids.empty() ? "" : " ") + std::to_string(u.curve);
           }
-          notes->push_back(
-              "a face runs along a curve both ways (a seam, or a curve "
-              "that bounds no patch); left out: curves " +
-              ids);
+          notes->push_back("a face runs along a curve both ways and " + why +
+                           "; left out: curves " + ids);
         }
         continue;
       }

@@ -21,6 +21,7 @@
 
 #include "dot/validate.h"
 #include "fill/refine_limits.h"
+#include "network/seam.h"
 #include "network/surface_steps.h"
 #include "util/run_control.h"
 
@@ -81,7 +82,84 @@ struct Work {
   PatchMesh dot;                            // the DOT patch
   PatchMesh mesh;                           // as it stands (refined)
   bool live = false;                        // has a patch in the surface
+  SeamSplit seam;                           // pieces empty: no seam
 };
+
+// The graph's vertices, then a seam patch's new path.
+std::vector<Vec3> PiecesVertices(const NetworkGraph& g, const Work& w) {
+  std::vector<Vec3> out = g.vertices;
+  out.insert(out.end(), w.seam.new_vertices.begin(), w.seam.new_vertices.end());
+  return out;
+}
+
+// TriangulatePatch of a patch, a seam patch piece by piece: the second
+// never takes an edge of the first (the surface would pinch there), the
+// new path's normals blended from its ends'.
+Status SolvePatch(const NetworkGraph& g, const Work& w,
+                  const std::vector<Vec3>& normals,
+                  const SurfaceOptions& options, const Control& control,
+                  PatchMesh* out, PatchReport* report) {
+  if (w.seam.pieces.empty()) {
+    return TriangulatePatch(g.vertices, w.loops, normals, w.forbidden, options,
+                            control, out, report);
+  }
+  const std::vector<Vec3> vertices = PiecesVertices(g, w);
+  std::vector<Vec3> piece_normals = normals;
+  const size_t points = w.seam.new_vertices.size();
+  for (size_t t = 0; t < points && !normals.empty(); ++t) {
+    const double f =
+        static_cast<double>(t + 1) / static_cast<double>(points + 1);
+    const Vec3 n = (1 - f) * normals[w.seam.from] + f * normals[w.seam.to];
+    piece_normals.push_back(Norm(n) > 0 ? Normalized(n) : Vec3{});
+  }
+  std::vector<Chord> forbidden = w.forbidden;
+  PatchMesh both;
+  both.new_vertices = w.seam.new_vertices;
+  double cost = 0, ms = 0;
+  for (size_t i = 0; i < w.seam.pieces.size(); ++i) {
+    PatchMesh one;
+    const Status s =
+        TriangulatePatch(vertices, {w.seam.pieces[i]}, piece_normals, forbidden,
+                         options, control, &one, report);
+    ms += report->triangulate_ms;
+    report->triangulate_ms = ms;
+    if (!s.ok()) return s;
+    cost += report->cost;
+    for (const Triangle& t : one.faces) {
+      both.faces.push_back(t);
+      both.piece.push_back(static_cast<char>(i));
+      for (int k = 0; k < 3; ++k)
+        forbidden.push_back(Key(t[k], t[(k + 1) % 3]));
+    }
+  }
+  report->cost = cost;
+  *out = std::move(both);
+  return OkStatus();
+}
+
+// FanPatch of a patch, a seam patch a fan per piece.
+Status FanWork(const NetworkGraph& g, const Work& w, PatchMesh* out) {
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
+  if (w.seam.pieces.empty())
+    return FanPatch(g.vertices, w.loops, first_new, out);
+  const std::vector<Vec3> vertices = PiecesVertices(g, w);
+  PatchMesh both;
+  both.new_vertices = w.seam.new_vertices;
+  for (size_t i = 0; i < w.seam.pieces.size(); ++i) {
+    PatchMesh one;
+    const auto centre =
+        first_new + static_cast<int32_t>(both.new_vertices.size());
+    const Status s = FanPatch(vertices, {w.seam.pieces[i]}, centre, &one);
+    if (!s.ok()) return s;
+    both.new_vertices.push_back(one.new_vertices[0]);
+    for (const Triangle& t : one.faces) {
+      both.faces.push_back(t);
+      both.piece.push_back(static_cast<char>(i));
+    }
+  }
+  *out = std::move(both);
+  return OkStatus();
+}
 
 template <typename F>
 Status ForEachPatch(const SurfaceOptions& options, const std::vector<int>& ids,
@@ -143,12 +221,19 @@ Status FindConflicts(const NetworkGraph& g, const std::vector<Work>& work,
   why->clear();
   std::vector<int32_t> owner, first;
   const MeshData m = Assemble(g, work, false, &owner, &first);
+  // In the patch's own numbering (its new vertices from first_new).
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
   auto chords_of = [&](size_t f) {
     std::vector<Chord> out;
     const Triangle& t = m.triangles[f];
+    auto own = [&](int32_t v) {
+      return v < first_new ? v : v - first[owner[f]] + first_new;
+    };
     for (int k = 0; k < 3; ++k) {
       const Chord c = Key(t[k], t[(k + 1) % 3]);
-      if (!work[owner[f]].boundary.count(c)) out.push_back(c);
+      if (!work[owner[f]].boundary.count(c)) {
+        out.push_back(Key(own(c.first), own(c.second)));
+      }
     }
     return out;
   };
@@ -392,6 +477,21 @@ SurfaceResult Surface(const CurveNetwork& network,
         if (v < u && in_patch.count(u)) w.forbidden.emplace_back(v, u);
       }
     }
+    if (cycles[p].loops.size() == 1 && RunsACurveTwice(cycles[p].loops[0])) {
+      std::string why;
+      if (!SplitSeam(g, cycles[p].loops[0], &w.seam, &why)) {
+        r.reason = "it runs a curve both ways and " + why;
+        continue;
+      }
+      report.notes.push_back(
+          "patch " + std::to_string(p) +
+          " runs a seam both ways: surfaced in two pieces joined by a new "
+          "path of " +
+          std::to_string(w.seam.new_vertices.size()) +
+          " vertices between input vertices " +
+          std::to_string(g.input_of_vertex[w.seam.from]) + " and " +
+          std::to_string(g.input_of_vertex[w.seam.to]));
+    }
   }
   std::vector<int> todo;
   if (options.skip_longest && options.cycles.empty()) {
@@ -418,9 +518,8 @@ SurfaceResult Surface(const CurveNetwork& network,
   if (normals.empty()) {
     s = ForEachPatch(options, todo, [&](int p) {
       PatchReport scratch;
-      Status r =
-          TriangulatePatch(g, work[p].loops, {}, work[p].forbidden, options,
-                           patch_control, &work[p].dot, &scratch);
+      Status r = SolvePatch(g, work[p], {}, options, patch_control,
+                            &work[p].dot, &scratch);
       if (r.code == StatusCode::kCancelled ||
           r.code == StatusCode::kDeadlineExceeded) {
         return r;
@@ -432,10 +531,14 @@ SurfaceResult Surface(const CurveNetwork& network,
     normals.assign(g.vertices.size(), Vec3{});
     for (int p : todo) {
       if (!first_status[p].ok()) continue;
-      for (const Triangle& tri : work[p].dot.faces) {
-        const Vec3& a = g.vertices[tri[0]];
-        const Vec3& b = g.vertices[tri[1]];
-        const Vec3& c = g.vertices[tri[2]];
+      const PatchMesh& pm = work[p].dot;
+      auto at = [&](int32_t v) -> const Vec3& {
+        return v < first_new ? g.vertices[v] : pm.new_vertices[v - first_new];
+      };
+      for (const Triangle& tri : pm.faces) {
+        const Vec3& a = at(tri[0]);
+        const Vec3& b = at(tri[1]);
+        const Vec3& c = at(tri[2]);
         const Vec3 n = Cross(b - a, c - a);
         if (Norm(n) == 0) continue;
         const Vec3 unit = Normalized(n);
@@ -445,6 +548,7 @@ SurfaceResult Surface(const CurveNetwork& network,
           const Vec3 e1 = *corner[(k + 1) % 3] - *corner[k];
           const Vec3 e2 = *corner[(k + 2) % 3] - *corner[k];
           const double angle = std::atan2(Norm(Cross(e1, e2)), Dot(e1, e2));
+          if (tri[k] >= first_new) continue;  // a seam's new path
           normals[tri[k]] = normals[tri[k]] + angle * unit;
         }
       }
@@ -459,9 +563,8 @@ SurfaceResult Surface(const CurveNetwork& network,
   int done = 0;
   std::vector<Status> status(patch_count);
   auto solve = [&](int p) {
-    Status r =
-        TriangulatePatch(g, work[p].loops, normals, work[p].forbidden, options,
-                         patch_control, &work[p].dot, &report.patches[p]);
+    Status r = SolvePatch(g, work[p], normals, options, patch_control,
+                          &work[p].dot, &report.patches[p]);
     if (r.code == StatusCode::kCancelled ||
         r.code == StatusCode::kDeadlineExceeded) {
       return r;
@@ -488,7 +591,7 @@ SurfaceResult Surface(const CurveNetwork& network,
   std::vector<char> stubborn(patch_count, 0), fanned(patch_count, 0);
   auto fan = [&](int p, const std::string& why) {
     fanned[p] = 1;
-    if (!FanPatch(g, work[p].loops, first_new, &work[p].dot).ok()) return;
+    if (!FanWork(g, work[p], &work[p].dot).ok()) return;
     work[p].live = true;
     report.patches[p].fan = true;
     report.patches[p].space = SpaceUsed::kNone;

@@ -24,7 +24,7 @@ using VertexIndex = SurfaceMesh::Vertex_index;
 using FaceIndex = SurfaceMesh::Face_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-Problem PatchProblem(const NetworkGraph& graph,
+Problem PatchProblem(const std::vector<Vec3>& vertices,
                      const std::vector<std::vector<int32_t>>& loops,
                      const std::vector<Vec3>& normals,
                      const std::vector<std::pair<int32_t, int32_t>>& forbidden,
@@ -38,12 +38,12 @@ Problem PatchProblem(const NetworkGraph& graph,
     for (size_t k = 0; k < loop.size(); ++k) {
       position[loop[k]] = static_cast<int32_t>(ids->size());
       ids->push_back(loop[k]);
-      p.vertices.push_back(graph.vertices[loop[k]]);
+      p.vertices.push_back(vertices[loop[k]]);
       if (!normals.empty()) p.normals.push_back(normals[loop[k]]);
       next.push_back(k + 1 < loop.size() ? first + static_cast<int32_t>(k) + 1
                                          : first);
-      perimeter += Distance(graph.vertices[loop[k]],
-                            graph.vertices[loop[(k + 1) % loop.size()]]);
+      perimeter +=
+          Distance(vertices[loop[k]], vertices[loop[(k + 1) % loop.size()]]);
     }
     if (loops.size() > 1) {
       p.loop_sizes.push_back(static_cast<int32_t>(loop.size()));
@@ -82,7 +82,8 @@ Problem PatchProblem(const NetworkGraph& graph,
 }  // namespace
 
 Status TriangulatePatch(
-    const NetworkGraph& graph, const std::vector<std::vector<int32_t>>& loops,
+    const std::vector<Vec3>& vertices,
+    const std::vector<std::vector<int32_t>>& loops,
     const std::vector<Vec3>& normals,
     const std::vector<std::pair<int32_t, int32_t>>& forbidden,
     const SurfaceOptions& options, const Control& control, PatchMesh* patch,
@@ -90,7 +91,7 @@ Status TriangulatePatch(
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<int32_t> ids;
   const Problem problem =
-      PatchProblem(graph, loops, normals, forbidden, options, &ids);
+      PatchProblem(vertices, loops, normals, forbidden, options, &ids);
   Options o = options.triangulate;
   o.protect_edges = false;   // a vertex on a curve would split it for one side
   o.reorient_loops = false;  // loops run as the embedding orients them
@@ -121,28 +122,27 @@ Status TriangulatePatch(
   report->space = r.space_used;
   report->solver = r.solver;
   report->cost = r.total_cost;
-  patch->new_vertices.clear();
-  patch->faces.clear();
+  *patch = {};
   for (const Triangle& t : r.triangles) {
     patch->faces.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
   }
   return OkStatus();
 }
 
-Status FanPatch(const NetworkGraph& graph,
-                const std::vector<std::vector<int32_t>>& loops,
-                int32_t first_new, PatchMesh* patch) {
+Status FanPatch(const std::vector<Vec3>& vertices,
+                const std::vector<std::vector<int32_t>>& loops, int32_t centre,
+                PatchMesh* patch) {
   if (loops.size() != 1) {
     return MakeStatus(StatusCode::kNoTriangulation,
                       "no fan joins several loops");
   }
   const auto& loop = loops[0];
   Vec3 sum;
-  for (int32_t v : loop) sum = sum + graph.vertices[v];
+  for (int32_t v : loop) sum = sum + vertices[v];
+  *patch = {};
   patch->new_vertices = {(1.0 / static_cast<double>(loop.size())) * sum};
-  patch->faces.clear();
   for (size_t k = 0; k < loop.size(); ++k) {
-    patch->faces.push_back({loop[k], loop[(k + 1) % loop.size()], first_new});
+    patch->faces.push_back({loop[k], loop[(k + 1) % loop.size()], centre});
   }
   return OkStatus();
 }
@@ -155,12 +155,20 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
   if (!ticker.Poll()) return ticker.status();
 
   // Local numbering, moved to the origin and scaled to unit size (as
-  // FillHoles refines: no underflow at tiny coordinates).
+  // FillHoles refines: no underflow at tiny coordinates). The faces of a
+  // seam patch's piece 1 have their own copies of its vertices (keyed ~v):
+  // refined apart, the two pieces keep the seam and the new path as borders
+  // (with edges of both pieces around them, Liepa's scale would be the
+  // long chords').
+  auto key = [&](size_t f, int32_t v) {
+    return !patch->piece.empty() && patch->piece[f] == 1 ? ~v : v;
+  };
   std::map<int32_t, int32_t> local;
   std::vector<int32_t> global;
-  for (const Triangle& t : patch->faces) {
-    for (int32_t v : t) {
-      if (local.emplace(v, static_cast<int32_t>(global.size())).second) {
+  for (size_t f = 0; f < patch->faces.size(); ++f) {
+    for (int32_t v : patch->faces[f]) {
+      if (local.emplace(key(f, v), static_cast<int32_t>(global.size()))
+              .second) {
         global.push_back(v);
       }
     }
@@ -184,10 +192,11 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
     sm.add_vertex(K::Point_3(p.x, p.y, p.z));
   }
   std::vector<FaceIndex> faces;
-  for (const Triangle& t : patch->faces) {
-    const FaceIndex f =
-        sm.add_face(VertexIndex(local[t[0]]), VertexIndex(local[t[1]]),
-                    VertexIndex(local[t[2]]));
+  for (size_t k = 0; k < patch->faces.size(); ++k) {
+    const Triangle& t = patch->faces[k];
+    const FaceIndex f = sm.add_face(VertexIndex(local[key(k, t[0])]),
+                                    VertexIndex(local[key(k, t[1])]),
+                                    VertexIndex(local[key(k, t[2])]));
     if (f == SurfaceMesh::null_face()) {
       report->reason = "not refined: the patch is not a manifold surface";
       return OkStatus();
@@ -208,24 +217,30 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
                      "budget: kept the unrefined patch";
     return OkStatus();
   }
-  // Curve vertices keep their ids; the patch's own (a fan's centre, and
-  // what refinement added) are numbered anew.
+  // Curve vertices keep their ids; the patch's own (a fan's centre, a
+  // seam's new path, and what refinement added) are numbered anew, both
+  // copies of one alike.
   std::vector<int32_t> id_of(sm.number_of_vertices());
+  std::map<int32_t, int32_t> renumbered;
   PatchMesh refined;
   for (VertexIndex v : sm.vertices()) {
     if (v.idx() < global.size() && global[v.idx()] < first_new) {
       id_of[v.idx()] = global[v.idx()];
       continue;
     }
+    if (v.idx() < global.size()) {
+      const auto [it, added] = renumbered.emplace(
+          global[v.idx()],
+          first_new + static_cast<int32_t>(refined.new_vertices.size()));
+      id_of[v.idx()] = it->second;
+      if (added) refined.new_vertices.push_back(position(global[v.idx()]));
+      continue;
+    }
     id_of[v.idx()] =
         first_new + static_cast<int32_t>(refined.new_vertices.size());
-    if (v.idx() < global.size()) {
-      refined.new_vertices.push_back(position(global[v.idx()]));
-    } else {
-      const auto& p = sm.point(v);
-      refined.new_vertices.push_back(center +
-                                     (1.0 / scale) * Vec3{p.x(), p.y(), p.z()});
-    }
+    const auto& p = sm.point(v);
+    refined.new_vertices.push_back(center +
+                                   (1.0 / scale) * Vec3{p.x(), p.y(), p.z()});
   }
   for (FaceIndex f : sm.faces()) {
     Triangle t;

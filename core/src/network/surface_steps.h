@@ -5,6 +5,7 @@
 #ifndef DOT_CORE_NETWORK_SURFACE_STEPS_H_
 #define DOT_CORE_NETWORK_SURFACE_STEPS_H_
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,31 +16,37 @@ namespace dot {
 struct PatchMesh {
   std::vector<Vec3> new_vertices;
   std::vector<Triangle> faces;
+  // A seam patch (a loop that runs a path of curves both ways, split in two
+  // pieces): the piece of each face, 0 or 1, which refinement keeps apart
+  // (the seam and the new path stay borders). Empty otherwise.
+  std::vector<char> piece;
 };
 
-// DOT over the cycle's loops (graph vertex ids, patch orientation), with
-// `normals` (per graph vertex, empty: none) as boundary normals and
+// DOT over the cycle's loops (ids into `vertices`, patch orientation), with
+// `normals` (per vertex, empty: none) as boundary normals and
 // `forbidden` chords (graph vertex pairs) never used: Delaunay first, then
 // every triangle with the Delaunay ones first for one loop. Fills the
 // report's space, solver, cost and triangulate_ms; kNoTriangulation says
 // why no step found one.
 Status TriangulatePatch(
-    const NetworkGraph& graph, const std::vector<std::vector<int32_t>>& loops,
+    const std::vector<Vec3>& vertices,
+    const std::vector<std::vector<int32_t>>& loops,
     const std::vector<Vec3>& normals,
     const std::vector<std::pair<int32_t, int32_t>>& forbidden,
     const SurfaceOptions& options, const Control& control, PatchMesh* patch,
     PatchReport* report);
 
 // The last resort for one loop no DOT step triangulated without meeting
-// the rest: a fan of triangles from a new vertex at the loop's centroid
-// (refinement and fairing then shape it). kNoTriangulation for several
-// loops.
-Status FanPatch(const NetworkGraph& graph,
-                const std::vector<std::vector<int32_t>>& loops,
-                int32_t first_new, PatchMesh* patch);
+// the rest: a fan of triangles from a new vertex (id `centre`, the one
+// new_vertices holds) at the loop's centroid (refinement and fairing then shape
+// it). kNoTriangulation for several loops.
+Status FanPatch(const std::vector<Vec3>& vertices,
+                const std::vector<std::vector<int32_t>>& loops, int32_t centre,
+                PatchMesh* patch);
 
 // Liepa refinement of one patch alone, its boundary (the curves) kept:
-// new vertices inside only, so neighbours still meet on the curves. Past
+// new vertices inside only, so neighbours still meet on the curves (a seam
+// patch piece by piece). Past
 // `cap` new vertices the patch stays unrefined (its reason says so).
 Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
                    const Control& control, int32_t first_new, size_t cap,

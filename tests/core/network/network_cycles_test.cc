@@ -133,6 +133,34 @@ TEST(NetworkCyclesTest, GenusThreeCutRimsAreFound) {
   EXPECT_GE(coarse.rims, coarse.patches * 97 / 100);
 }
 
+// Two rims and a seam: the caps, and the tube's face, which runs the seam
+// one way and back (a cycle SurfaceNetwork cuts in two).
+TEST(NetworkCyclesTest, SeamFaceIsACycle) {
+  NetworkGraph g;
+  ASSERT_TRUE(BuildNetworkGraph(CylinderNetwork(16, true), &g).ok());
+  ASSERT_EQ(g.curves.size(), 3u);
+  std::vector<NetworkCycle> cycles;
+  std::vector<std::string> notes;
+  ASSERT_TRUE(FindNetworkCycles(g, &cycles, &notes).ok());
+  EXPECT_TRUE(notes.empty());
+  ASSERT_EQ(cycles.size(), 3u);
+  int tubes = 0;
+  for (const NetworkCycle& c : cycles) {
+    std::map<int32_t, int> runs;
+    for (const CurveUse& u : c.loops[0]) runs[u.curve] += u.reversed ? -1 : 1;
+    if (c.loops[0].size() == 4) {
+      ++tubes;
+      EXPECT_EQ(runs.size(), 3u);
+      for (const auto& [curve, net] : runs) {
+        if (curve == 2) {
+          EXPECT_EQ(net, 0);  // the seam, once each way
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tubes, 1);
+}
+
 TEST(NetworkCyclesTest, UserCyclesByCornersOrEveryVertex) {
   const CurveNetwork net = CubeNetwork(2);  // corners 0..7, midpoints 8..19
   NetworkGraph g;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -185,6 +186,82 @@ TEST(SurfaceNetworkTest, LoneRimsAreDisksAndDanglingCurvesAreReported) {
   EXPECT_EQ(r.report.surfaced, 2);
   EXPECT_EQ(ShapeOf(r.mesh).pieces, 2);
   EXPECT_EQ(CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles), 0);
+}
+
+// A tube whose face runs its seam both ways: cut in two pieces by a new
+// path, the tube, its caps and the seam make one closed surface.
+TEST(SurfaceNetworkTest, CylinderWithASeamClosesAtEveryStage) {
+  const CurveNetwork net = CylinderNetwork(24, true);
+  for (FillStage stage :
+       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
+    SCOPED_TRACE(std::string(FillStageName(stage)));
+    SurfaceOptions o;
+    o.stage = stage;
+    const SurfaceResult r = SurfaceNetwork(net, o);
+    ExpectClosedAndValid(net, r);
+    EXPECT_EQ(ShapeOf(r.mesh).euler, 2);
+    ASSERT_EQ(r.report.patches.size(), 3u);
+    const PatchReport& tube = r.report.patches[0];
+    ASSERT_EQ(tube.loops[0].size(), 4u);  // rim, seam, rim, seam back
+    ASSERT_FALSE(r.report.notes.empty());
+    EXPECT_NE(r.report.notes[0].find("seam"), std::string::npos);
+    // The new path's points are new vertices, free in the fairing: at
+    // kFair the tube bulges between its rims (thin plate).
+    EXPECT_GT(r.mesh.vertices.size(), net.vertices.size());
+    if (stage != FillStage::kTriangulate) {
+      EXPECT_GT(tube.refined_vertices, 0);
+    }
+    double widest = 0;
+    for (size_t v = net.vertices.size(); v < r.mesh.vertices.size(); ++v) {
+      const Vec3& p = r.mesh.vertices[v];
+      if (p.z > 0.5 && p.z < 1.5) {
+        widest = std::max(widest, std::hypot(p.x, p.y));
+      }
+    }
+    if (stage == FillStage::kFair) {
+      EXPECT_TRUE(tube.faired);
+      EXPECT_GT(widest, 1.0);
+    }
+  }
+}
+
+// Three rims joined by two seams at different angles: two tube faces, each
+// running its own seam both ways, the middle rim split between them.
+TEST(SurfaceNetworkTest, StackedTubesWithSeamsClose) {
+  CurveNetwork net;
+  const int n = 20;
+  for (int rim = 0; rim < 3; ++rim) {
+    std::vector<int32_t> line;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * 3.141592653589793 * k / n;
+      line.push_back(static_cast<int32_t>(net.vertices.size()));
+      net.vertices.push_back({std::cos(a), std::sin(a), 1.5 * rim});
+    }
+    line.push_back(line.front());
+    net.polylines.push_back(std::move(line));
+  }
+  auto seam = [&](int32_t from, int32_t to) {
+    std::vector<int32_t> line = {from};
+    for (int k = 1; k < 4; ++k) {
+      const double f = k / 4.0;
+      line.push_back(static_cast<int32_t>(net.vertices.size()));
+      net.vertices.push_back((1 - f) * net.vertices[from] +
+                             f * net.vertices[to]);
+    }
+    line.push_back(to);
+    net.polylines.push_back(std::move(line));
+  };
+  seam(0, n);              // bottom to middle at angle 0
+  seam(n + 7, 2 * n + 7);  // middle to top, further round
+  const SurfaceResult r = SurfaceNetwork(net);
+  ExpectClosedAndValid(net, r);
+  EXPECT_EQ(ShapeOf(r.mesh).euler, 2);
+  EXPECT_EQ(r.report.patches.size(), 4u);
+  int seams = 0;
+  for (const std::string& note : r.report.notes) {
+    seams += note.find("seam") != std::string::npos;
+  }
+  EXPECT_EQ(seams, 2);
 }
 
 TEST(SurfaceNetworkTest, UserCycleWithTwoLoopsIsATube) {
