@@ -303,6 +303,85 @@ Status CrossingPatches(const MeshData& m, const std::vector<int32_t>& owner,
   return OkStatus();
 }
 
+struct RescueTry {
+  PatchMesh mesh;
+  PatchReport report;  // as DOT (or the fan) left it
+};
+
+// Tries a failed patch `p` again in the finished surface: each of `tries`
+// (triangulations of its cycle) refined, faired with every other vertex
+// fixed, kept (*rescued) if it crosses nothing and shares no chord.
+Status RescuePatch(const NetworkGraph& g, const SurfaceOptions& options,
+                   const Control& control, const std::set<Chord>& curve_edges,
+                   int p, const std::vector<RescueTry>& tries, size_t cap,
+                   std::vector<Work>* work, PatchReport* report,
+                   bool* rescued) {
+  const auto first_new = static_cast<int32_t>(g.vertices.size());
+  Work& w = (*work)[p];
+  *rescued = false;
+  for (const RescueTry& t : tries) {
+    w.dot = t.mesh;
+    w.mesh = t.mesh;
+    w.live = true;
+    PatchReport r = t.report;
+    r.reason = report->reason;
+    r.refined_vertices = 0;
+    Status s = RefinePatch(g, options, control, first_new, cap, &w.mesh, &r);
+    if (!s.ok()) return s;
+    std::vector<int32_t> owner, first;
+    MeshData m = Assemble(g, *work, true, &owner, &first);
+    const auto own = static_cast<int32_t>(w.mesh.new_vertices.size());
+    std::vector<char> fixed(m.vertices.size(), 1);
+    std::fill(fixed.begin() + first[p], fixed.begin() + first[p] + own, 0);
+    bool faired = false;
+    std::string why;
+    s = FairMesh(&m, first_new, fixed, options.fairing_continuity, control,
+                 &faired, &why);
+    if (!s.ok()) return s;
+    std::set<int32_t> crossing;
+    int64_t pairs = 0;
+    s = CrossingPatches(m, owner, control, &crossing, &pairs);
+    if (!s.ok()) return s;
+    // A chord of p that another patch has as an edge: they would touch.
+    std::set<Chord> chords;
+    for (size_t f = 0; f < m.triangles.size(); ++f) {
+      if (owner[f] != p) continue;
+      const Triangle& tri = m.triangles[f];
+      for (int k = 0; k < 3; ++k) {
+        const Chord c = Key(tri[k], tri[(k + 1) % 3]);
+        if (!curve_edges.count(c)) chords.insert(c);
+      }
+    }
+    bool touches = false;
+    for (size_t f = 0; f < m.triangles.size() && !touches; ++f) {
+      if (owner[f] == p) continue;
+      const Triangle& tri = m.triangles[f];
+      for (int k = 0; k < 3; ++k) {
+        touches = touches || chords.count(Key(tri[k], tri[(k + 1) % 3])) > 0;
+      }
+    }
+    if (pairs == 0 && !touches &&
+        SharedEdgePatches(m, owner, curve_edges).empty()) {
+      std::copy(m.vertices.begin() + first[p],
+                m.vertices.begin() + first[p] + own,
+                w.mesh.new_vertices.begin());
+      r.status = PatchStatus::kSurfaced;
+      r.faired = faired && own > 0;
+      Note(&r, std::string("surfaced after the fairing, ") +
+                   (faired ? "faired" : "refined") +
+                   " alone in the finished surface (its coarse " +
+                   (r.fan ? "fan" : "DOT surface") + " met a neighbour)");
+      *report = std::move(r);
+      *rescued = true;
+      return OkStatus();
+    }
+  }
+  w.live = false;
+  w.dot = {};
+  w.mesh = {};
+  return OkStatus();
+}
+
 // Fair each live patch alone, its boundary fixed (when the patches do not
 // form one manifold surface); a patch whose fairing crosses anything keeps
 // its refined vertices.
@@ -582,6 +661,10 @@ SurfaceResult Surface(const CurveNetwork& network,
     return r;
   });
   if (!s.ok()) return fail(s);
+  std::vector<RescueTry> first_dot(patch_count);
+  for (int p : todo) {
+    if (work[p].live) first_dot[p] = {work[p].dot, report.patches[p]};
+  }
   // Patches that meet others wrongly are solved again without the chords
   // of their faces in the conflict.
   // A patch DOT could not triangulate, or that still meets others after
@@ -747,9 +830,12 @@ SurfaceResult Surface(const CurveNetwork& network,
     }
     if (report.faired_whole) {
       for (int p : live) {
-        const int32_t end =
-            first[p] + static_cast<int32_t>(work[p].mesh.new_vertices.size());
-        report.patches[p].faired = end > first[p] && !fixed[first[p]];
+        auto& moved = work[p].mesh.new_vertices;
+        std::copy(mesh.vertices.begin() + first[p],
+                  mesh.vertices.begin() + first[p] +
+                      static_cast<std::ptrdiff_t>(moved.size()),
+                  moved.begin());
+        report.patches[p].faired = !moved.empty() && !fixed[first[p]];
       }
     } else {
       mesh = refined;
@@ -758,6 +844,37 @@ SurfaceResult Surface(const CurveNetwork& network,
       if (!s.ok()) return fail(s);
       mesh = Assemble(g, work, true, &owner, &first);
     }
+    // A patch left open because its DOT surface (and its fan) met a
+    // neighbour may not once faired: the coarse triangles were what met.
+    // Tried again against the finished surface, faired alone with all
+    // else fixed, kept only if it meets nothing.
+    for (int p : todo) {
+      if (work[p].live) continue;
+      std::vector<RescueTry> tries;
+      if (!first_dot[p].mesh.faces.empty()) tries.push_back(first_dot[p]);
+      RescueTry fan_try;
+      if (FanWork(g, work[p], &fan_try.mesh).ok()) {
+        fan_try.report = report.patches[p];
+        fan_try.report.fan = true;
+        fan_try.report.space = SpaceUsed::kNone;
+        fan_try.report.solver = Solver::kNone;
+        fan_try.report.cost = 0;
+        tries.push_back(std::move(fan_try));
+      }
+      const int64_t share =
+          options.triangulate.memory_budget_bytes /
+          std::max<int64_t>(1, static_cast<int64_t>(live.size()) + 1);
+      const size_t cap = RefinedVertexCap(
+          static_cast<size_t>(report.patches[p].boundary_vertices), share,
+          /*floor=*/0);
+      bool rescued = false;
+      s = RescuePatch(g, options, control, curve_edges, p, tries, cap, &work,
+                      &report.patches[p], &rescued);
+      if (!s.ok()) return fail(s);
+      if (rescued) live.push_back(p);
+    }
+    std::sort(live.begin(), live.end());
+    mesh = Assemble(g, work, true, &owner, &first);
     report.fair_ms = MsSince(t);
   }
 

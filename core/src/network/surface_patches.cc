@@ -3,7 +3,9 @@
 // patch alone (its curves are its border, which refinement never splits or
 // flips, so neighbouring patches still meet vertex for vertex).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/refine.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -203,12 +205,49 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
     }
     faces.push_back(f);
   }
+  // The original vertices, by the slot they had (remeshing may free and
+  // reuse slots).
+  auto original = sm.add_property_map<VertexIndex, int32_t>("v:dot", -1).first;
+  for (VertexIndex v : sm.vertices()) {
+    original[v] = static_cast<int32_t>(v.idx());
+  }
+  bool interior = false;  // a fan's centre
+  double longest = 0, area = 0;
+  for (VertexIndex v : sm.vertices()) interior = interior || !sm.is_border(v);
+  for (FaceIndex f : faces) {
+    area += CGAL::to_double(PMP::face_area(f, sm));
+  }
+  for (auto h : sm.halfedges()) {
+    if (sm.is_border(h)) {
+      longest = std::max(
+          longest, std::sqrt(CGAL::to_double(PMP::squared_edge_length(h, sm))));
+    }
+  }
   std::vector<FaceIndex> new_faces;
   std::vector<VertexIndex> new_vertices;
   try {
-    PMP::refine(sm, faces, std::back_inserter(new_faces),
-                CountingVertexOut<VertexIndex>{&new_vertices, cap, &ticker},
-                CGAL::parameters::density_control_factor(options.density));
+    if (interior) {
+      // Liepa's scale at a vertex is its edges' mean length, the spokes of
+      // a fan included once any vertex is inside: it would barely refine.
+      // Isotropic remeshing to the curves' spacing (every border edge at
+      // most 4/3 of the target, so none is split) instead.
+      const double target = 0.75 * longest * (1 + 1e-9);
+      const double estimate = area / (0.433 * target * target);
+      if (target <= 0 || estimate > static_cast<double>(cap)) {
+        throw StopRefining{OkStatus()};
+      }
+      PMP::isotropic_remeshing(
+          faces, target, sm,
+          CGAL::parameters::number_of_iterations(3).protect_constraints(true));
+      if (!ticker.Poll()) return ticker.status();
+      for (VertexIndex v : sm.vertices()) {
+        if (original[v] < 0) new_vertices.push_back(v);
+      }
+    } else {
+      PMP::refine(sm, faces, std::back_inserter(new_faces),
+                  CountingVertexOut<VertexIndex>{&new_vertices, cap, &ticker},
+                  CGAL::parameters::density_control_factor(options.density));
+    }
   } catch (const StopRefining& stop) {
     if (!stop.status.ok()) return stop.status;
     report->refine_ms = MsSince(t0);
@@ -220,21 +259,25 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
   // Curve vertices keep their ids; the patch's own (a fan's centre, a
   // seam's new path, and what refinement added) are numbered anew, both
   // copies of one alike.
-  std::vector<int32_t> id_of(sm.number_of_vertices());
+  std::vector<int32_t> id_of(sm.num_vertices());
   std::map<int32_t, int32_t> renumbered;
   PatchMesh refined;
   for (VertexIndex v : sm.vertices()) {
-    if (v.idx() < global.size() && global[v.idx()] < first_new) {
-      id_of[v.idx()] = global[v.idx()];
+    const int32_t was = original[v];
+    if (was >= 0 && global[was] < first_new) {
+      id_of[v.idx()] = global[was];
       continue;
     }
-    if (v.idx() < global.size()) {
+    if (was >= 0) {  // both copies of one alike
       const auto [it, added] = renumbered.emplace(
-          global[v.idx()],
+          global[was],
           first_new + static_cast<int32_t>(refined.new_vertices.size()));
       id_of[v.idx()] = it->second;
-      if (added) refined.new_vertices.push_back(position(global[v.idx()]));
-      continue;
+      if (!added) continue;
+      if (!interior) {  // Liepa moves no vertex: exactly where it was
+        refined.new_vertices.push_back(position(global[was]));
+        continue;
+      }
     }
     id_of[v.idx()] =
         first_new + static_cast<int32_t>(refined.new_vertices.size());
