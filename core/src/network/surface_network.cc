@@ -303,6 +303,51 @@ Status CrossingPatches(const MeshData& m, const std::vector<int32_t>& owner,
   return OkStatus();
 }
 
+// Puts a patch back to its DOT surface (or fan); false if it was there.
+bool PutBackOne(Work* w, PatchReport* r, const std::string& why) {
+  if (w->mesh.faces == w->dot.faces &&
+      w->mesh.new_vertices == w->dot.new_vertices) {
+    return false;
+  }
+  w->mesh = w->dot;
+  r->refined_vertices = 0;
+  r->faired = false;
+  Note(r, why);
+  return true;
+}
+
+// Puts patches back to their DOT surfaces while any makes a chord on an
+// edge another face has, or (`crossings`) crosses another. kInternal if
+// the DOT surfaces themselves do (they were checked apart).
+Status PutBack(const NetworkGraph& g, const Control& control,
+               const std::set<Chord>& curve_edges, bool crossings,
+               std::vector<Work>* work, std::vector<PatchReport>* reports) {
+  for (;;) {
+    std::vector<int32_t> owner, first;
+    const MeshData m = Assemble(g, *work, true, &owner, &first);
+    std::set<int32_t> bad = SharedEdgePatches(m, owner, curve_edges);
+    if (crossings) {
+      std::set<int32_t> crossing;
+      int64_t pairs = 0;
+      const Status s = CrossingPatches(m, owner, control, &crossing, &pairs);
+      if (!s.ok()) return s;
+      bad.insert(crossing.begin(), crossing.end());
+    }
+    if (bad.empty()) return OkStatus();
+    bool changed = false;
+    for (int32_t p : bad) {
+      changed |=
+          PutBackOne(&(*work)[p], &(*reports)[p],
+                     "refinement undone: it made faces cross or share an edge");
+    }
+    if (!changed) {
+      return MakeStatus(StatusCode::kInternal,
+                        "DOT patches that were checked apart cross after "
+                        "refinement was undone");
+    }
+  }
+}
+
 struct RescueTry {
   PatchMesh mesh;
   PatchReport report;  // as DOT (or the fan) left it
@@ -740,8 +785,9 @@ SurfaceResult Surface(const CurveNetwork& network,
   report.triangulate_ms = MsSince(t);
 
   // Refinement, patch by patch, each within its share of the memory
-  // budget. A refined patch that crosses another, or that made a chord on
-  // an edge another face already has, is put back.
+  // budget. A refined patch that made a chord on an edge another face
+  // already has is put back (and one that crosses another, unless the
+  // fairing follows).
   std::set<Chord> curve_edges;
   for (const NetworkCurve& c : g.curves) {
     for (size_t k = 0; k + 1 < c.vertices.size(); ++k) {
@@ -767,43 +813,37 @@ SurfaceResult Surface(const CurveNetwork& network,
                          &work[p].mesh, &report.patches[p]);
     });
     if (!s.ok()) return fail(s);
-    for (int round = 0;; ++round) {
-      std::vector<int32_t> owner, first;
-      const MeshData m = Assemble(g, work, true, &owner, &first);
-      std::set<int32_t> crossing;
-      int64_t pairs = 0;
-      s = CrossingPatches(m, owner, control, &crossing, &pairs);
-      if (!s.ok()) return fail(s);
-      const std::set<int32_t> shared = SharedEdgePatches(m, owner, curve_edges);
-      if (pairs == 0 && shared.empty()) break;
-      crossing.insert(shared.begin(), shared.end());
-      for (int32_t p : crossing) {
-        if (report.patches[p].refined_vertices == 0) continue;
-        work[p].mesh = work[p].dot;
-        report.patches[p].refined_vertices = 0;
-        Note(&report.patches[p],
-             "refinement undone: it made faces cross or share an edge");
-      }
-      if (round == kResolveRounds) {
-        return fail(MakeStatus(StatusCode::kInternal,
-                               "DOT patches that were checked apart cross "
-                               "after refinement was undone"));
-      }
-    }
+    // Crossings of refined patches are the fairing's to judge (a coarse
+    // fan crosses where its faired surface does not); without fairing,
+    // they are undone here.
+    s = PutBack(g, control, curve_edges, options.stage == FillStage::kRefine,
+                &work, &report.patches);
+    if (!s.ok()) return fail(s);
     report.refine_ms = MsSince(t);
   }
 
-  // Fairing of the whole network; patches whose fairing crosses anything
-  // are fixed at their refined vertices and the rest faired again.
+  // Fairing of the whole network. A patch whose faired surface crosses
+  // anything is fixed where refinement left it, and if it crosses again,
+  // put back to its DOT surface; the rest are faired again. The DOT
+  // surfaces were checked apart, so this ends.
   std::vector<int32_t> owner, first;
   MeshData mesh = Assemble(g, work, true, &owner, &first);
   if (options.stage == FillStage::kFair &&
       mesh.vertices.size() > g.vertices.size()) {
     t = Clock::now();
-    std::vector<char> fixed(mesh.vertices.size(), 0);
-    const MeshData refined = mesh;
+    std::vector<char> pinned(patch_count, 0);
     std::string why;
-    for (int round = 0; round <= kResolveRounds; ++round) {
+    for (size_t round = 0; round <= 2 * patch_count; ++round) {
+      mesh = Assemble(g, work, true, &owner, &first);
+      std::vector<char> fixed(mesh.vertices.size(), 0);
+      for (int p : live) {
+        if (!pinned[p]) continue;
+        std::fill(
+            fixed.begin() + first[p],
+            fixed.begin() + first[p] +
+                static_cast<std::ptrdiff_t>(work[p].mesh.new_vertices.size()),
+            1);
+      }
       bool faired = false;
       why.clear();
       s = FairMesh(&mesh, first_new, fixed, options.fairing_continuity, control,
@@ -818,15 +858,20 @@ SurfaceResult Surface(const CurveNetwork& network,
         report.faired_whole = true;
         break;
       }
-      mesh = refined;
+      bool changed = false;
       for (int32_t p : crossing) {
-        const int32_t end =
-            first[p] + static_cast<int32_t>(work[p].mesh.new_vertices.size());
-        for (int32_t v = first[p]; v < end; ++v) fixed[v] = 1;
-        Note(&report.patches[p], "fairing undone: it made faces cross");
+        if (!pinned[p]) {
+          pinned[p] = 1;
+          changed = true;
+          Note(&report.patches[p], "fairing undone: it made faces cross");
+        } else {
+          changed |= PutBackOne(&work[p], &report.patches[p],
+                                "refinement undone: it crossed unfaired");
+        }
       }
       why =
           "faces still crossed after " + std::to_string(round + 1) + " rounds";
+      if (!changed) break;
     }
     if (report.faired_whole) {
       for (int p : live) {
@@ -835,14 +880,14 @@ SurfaceResult Surface(const CurveNetwork& network,
                   mesh.vertices.begin() + first[p] +
                       static_cast<std::ptrdiff_t>(moved.size()),
                   moved.begin());
-        report.patches[p].faired = !moved.empty() && !fixed[first[p]];
+        report.patches[p].faired = !moved.empty() && !pinned[p];
       }
     } else {
-      mesh = refined;
       report.notes.push_back("the network was faired patch by patch: " + why);
+      s = PutBack(g, control, curve_edges, true, &work, &report.patches);
+      if (!s.ok()) return fail(s);
       s = FairEachPatch(g, options, control, &work, &report.patches);
       if (!s.ok()) return fail(s);
-      mesh = Assemble(g, work, true, &owner, &first);
     }
     // A patch left open because its DOT surface (and its fan) met a
     // neighbour may not once faired: the coarse triangles were what met.
