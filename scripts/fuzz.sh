@@ -10,7 +10,7 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
 #
 # Targets: polygon_text_fuzz polygon_obj_fuzz mesh_file_fuzz request_fuzz
-# fill_stream_fuzz triangulate_fuzz
+# fill_stream_fuzz triangulate_fuzz network_fuzz
 # (default: all). Environment:
 #   FUZZ_RUNS=N        also stop a target after N executions
 #   FUZZ_WORK=DIR      scratch directory (kept); default a temporary one,
@@ -27,7 +27,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 if (($#)); then shift; fi
-all_targets=(polygon_text_fuzz polygon_obj_fuzz mesh_file_fuzz request_fuzz fill_stream_fuzz triangulate_fuzz)
+all_targets=(polygon_text_fuzz polygon_obj_fuzz mesh_file_fuzz request_fuzz fill_stream_fuzz triangulate_fuzz network_fuzz)
 targets=("$@")
 ((${#targets[@]})) || targets=("${all_targets[@]}")
 for t in "${targets[@]}"; do
@@ -97,6 +97,7 @@ max_len() {
     request_fuzz) echo 2048 ;;
     fill_stream_fuzz) echo 4096 ;;
     triangulate_fuzz) echo 512 ;;
+    network_fuzz) echo 2048 ;;
   esac
 }
 fuzz_stat() { sed -n "s/^stat::$1: *//p" "$2" | tail -1; }
