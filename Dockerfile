@@ -16,7 +16,8 @@ ARG DOT_COMMIT=unknown
 RUN cmake -S . -B /build -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DDOT_BUILD_TESTS=OFF -DDOT_BUILD_BENCH=OFF -DDOT_GIT_COMMIT=${DOT_COMMIT} \
  && cmake --build /build \
- && DESTDIR=/out cmake --install /build --prefix /usr/local --strip
+ && DESTDIR=/out cmake --install /build --prefix /usr/local --strip \
+      --component Unspecified
 # The Corresponding Source, served to users by GetSource (AGPL-3.0 s. 13).
 RUN mkdir -p /out/usr/share/dot \
  && tar --exclude=./.git -czf /out/usr/share/dot/dot-source.tar.gz .

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: AGPL-3.0-or-later
+# Installs the build into a scratch prefix (cmake --install), then builds
+# tests/install/consumer against it twice, as a C++ user would: with
+# find_package(dot) and with pkg-config; both programs must run.
+#   tests/install/consumer_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+echo "installed: $(cd "$work/prefix" && find include/dot -name '*.h' | wc -l) headers," \
+     "$(cd "$work/prefix" && find . -name 'libdot_core.a' -o -name 'dotConfig.cmake' -o -name dot.pc | sort | tr '\n' ' ')"
+# 1. CMake: find_package(dot) -> dot::core.
+cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
+cmake --build "$work/cmake" > "$work/build.log"
+echo "find_package(dot): $("$work/cmake/consumer")"
+# 2. pkg-config (relocatable: the prefix is where dot.pc is).
+pc_dir=$(dirname "$(find "$work/prefix" -name dot.pc)")
+flags=$(PKG_CONFIG_PATH=$pc_dir pkg-config --cflags --libs dot)
+c++ -std=c++17 -O1 "$here/consumer/main.cc" $flags -o "$work/pc_consumer"
+echo "pkg-config dot: $("$work/pc_consumer")"
