@@ -37,9 +37,22 @@
 namespace {
 
 const dot::CurveNetwork* g_network = nullptr;
+const dot::SurfaceOptions* g_options = nullptr;
 
 [[noreturn]] void Fail(const char* what) {
   std::fprintf(stderr, "oracle failed: %s\n", what);
+  if (g_options != nullptr) {
+    std::fprintf(stderr, "stage %s, skip_longest %d, %zu user cycles:\n",
+                 std::string(dot::FillStageName(g_options->stage)).c_str(),
+                 g_options->skip_longest ? 1 : 0, g_options->cycles.size());
+    for (const auto& patch : g_options->cycles) {
+      for (const auto& loop : patch) {
+        std::fprintf(stderr, " |");
+        for (int32_t v : loop) std::fprintf(stderr, " %d", v);
+      }
+      std::fprintf(stderr, "\n");
+    }
+  }
   if (g_network != nullptr) {
     std::ostringstream obj;
     (void)dot::WriteNetworkObj(obj, *g_network);
@@ -188,14 +201,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (net.vertices.size() > 200 || net.polylines.size() > 64) return 0;
   } else {
-    options.stage = static_cast<dot::FillStage>(in.ConsumeIntegralInRange(0, 2));
+    options.stage =
+        static_cast<dot::FillStage>(in.ConsumeIntegralInRange(0, 2));
     net = Decode(&in, &options);
   }
   g_network = &net;
+  g_options = &options;
   dot::Control control;
   control.deadline =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
   CheckResult(net, dot::SurfaceNetwork(net, options, control));
   g_network = nullptr;
+  g_options = nullptr;
   return 0;
 }

@@ -41,11 +41,23 @@ void Note(PatchReport* r, const std::string& why) {
   r->reason += (r->reason.empty() ? "" : "; ") + why;
 }
 
-// Patches with a face on an edge that is not a curve's and has more than
-// two faces, or that two faces run the same way (refinement's flips can
-// make a chord another patch or a curve already has).
+struct Work {
+  std::vector<std::vector<int32_t>> loops;  // graph vertex ids
+  std::set<Chord> boundary;                 // its loops' edges
+  std::vector<Chord> forbidden;             // network edges, chords to avoid
+  PatchMesh dot;                            // the DOT patch
+  PatchMesh mesh;                           // as it stands (refined)
+  bool live = false;                        // has a patch in the surface
+  SeamSplit seam;                           // pieces empty: no seam
+};
+
+// Patches whose faces meet others' wrongly along an edge: a chord of a
+// patch (an edge not on its loops) that is a curve's edge or an edge of
+// another patch (refinement's flips can make one), or an edge that is no
+// curve's with more than two faces or two that run it the same way.
 std::set<int32_t> SharedEdgePatches(const MeshData& m,
                                     const std::vector<int32_t>& owner,
+                                    const std::vector<Work>& work,
                                     const std::set<Chord>& curve_edges) {
   std::map<Chord, std::vector<size_t>> faces_on;
   for (size_t f = 0; f < m.triangles.size(); ++f) {
@@ -55,7 +67,14 @@ std::set<int32_t> SharedEdgePatches(const MeshData& m,
   }
   std::set<int32_t> out;
   for (const auto& [edge, faces] : faces_on) {
-    if (faces.size() < 2 || curve_edges.count(edge)) continue;
+    const bool curve = curve_edges.count(edge) > 0;
+    bool several = false;
+    for (size_t f : faces) several = several || owner[f] != owner[faces[0]];
+    for (size_t f : faces) {
+      const bool chord = !work[owner[f]].boundary.count(edge);
+      if (chord && (curve || several)) out.insert(owner[f]);
+    }
+    if (faces.size() < 2 || curve) continue;
     bool same_way = false;
     if (faces.size() == 2) {
       const Chord e = edge;  // (C++17 lambdas cannot capture a binding)
@@ -74,16 +93,6 @@ std::set<int32_t> SharedEdgePatches(const MeshData& m,
   }
   return out;
 }
-
-struct Work {
-  std::vector<std::vector<int32_t>> loops;  // graph vertex ids
-  std::set<Chord> boundary;                 // its loops' edges
-  std::vector<Chord> forbidden;             // network edges, chords to avoid
-  PatchMesh dot;                            // the DOT patch
-  PatchMesh mesh;                           // as it stands (refined)
-  bool live = false;                        // has a patch in the surface
-  SeamSplit seam;                           // pieces empty: no seam
-};
 
 // The graph's vertices, then a seam patch's new path.
 std::vector<Vec3> PiecesVertices(const NetworkGraph& g, const Work& w) {
@@ -325,7 +334,7 @@ Status PutBack(const NetworkGraph& g, const Control& control,
   for (;;) {
     std::vector<int32_t> owner, first;
     const MeshData m = Assemble(g, *work, true, &owner, &first);
-    std::set<int32_t> bad = SharedEdgePatches(m, owner, curve_edges);
+    std::set<int32_t> bad = SharedEdgePatches(m, owner, *work, curve_edges);
     if (crossings) {
       std::set<int32_t> crossing;
       int64_t pairs = 0;
@@ -387,26 +396,7 @@ Status RescuePatch(const NetworkGraph& g, const SurfaceOptions& options,
     int64_t pairs = 0;
     s = CrossingPatches(m, owner, control, &crossing, &pairs);
     if (!s.ok()) return s;
-    // A chord of p that another patch has as an edge: they would touch.
-    std::set<Chord> chords;
-    for (size_t f = 0; f < m.triangles.size(); ++f) {
-      if (owner[f] != p) continue;
-      const Triangle& tri = m.triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        const Chord c = Key(tri[k], tri[(k + 1) % 3]);
-        if (!curve_edges.count(c)) chords.insert(c);
-      }
-    }
-    bool touches = false;
-    for (size_t f = 0; f < m.triangles.size() && !touches; ++f) {
-      if (owner[f] == p) continue;
-      const Triangle& tri = m.triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        touches = touches || chords.count(Key(tri[k], tri[(k + 1) % 3])) > 0;
-      }
-    }
-    if (pairs == 0 && !touches &&
-        SharedEdgePatches(m, owner, curve_edges).empty()) {
+    if (pairs == 0 && SharedEdgePatches(m, owner, *work, curve_edges).empty()) {
       std::copy(m.vertices.begin() + first[p],
                 m.vertices.begin() + first[p] + own,
                 w.mesh.new_vertices.begin());
@@ -934,6 +924,11 @@ SurfaceResult Surface(const CurveNetwork& network,
                            "the surface crosses itself after every check (" +
                                std::to_string(report.intersecting_pairs) +
                                " pairs)"));
+  }
+  if (!SharedEdgePatches(mesh, owner, work, curve_edges).empty()) {
+    return fail(MakeStatus(StatusCode::kInternal,
+                           "patches meet along an edge that is not a curve "
+                           "they share, after every check"));
   }
   std::vector<int> uses(g.curves.size(), 0);
   for (int p : live) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "dot/io.h"
 #include "dot/network.h"
@@ -262,6 +263,35 @@ TEST(SurfaceNetworkTest, StackedTubesWithSeamsClose) {
     seams += note.find("seam") != std::string::npos;
   }
   EXPECT_EQ(seams, 2);
+}
+
+// Found by network_fuzz: a seam patch whose refinement flipped a chord
+// onto a curve's edge (then shared by four faces once the patches on that
+// curve were surfaced). Such a refinement is undone; the mesh keeps the
+// contract whatever is left open.
+TEST(SurfaceNetworkTest, ARefinementFlipOntoACurveEdgeIsUndone) {
+  std::istringstream obj(
+      "v -3 0 -1\nv -1 -1 0\nv -1 1 3\nv 2 2 0\nv 1 -3 -2\nv -3 -3 -2\n"
+      "v -3 1 -3\nv 0 -2 -3\nv -3 1 -3\nv 0 -2 1\nv -2 1 3\nv 2 -2 -3\n"
+      "v -2 -1 -3\nv -1 -3 -3\nv -3 -3 -3\nv -3 -3 -2\n"
+      "l 11 9 6 8 15 9 4 8\nl 2 7\nl 4 3 16 10 3\n");
+  CurveNetwork net;
+  ASSERT_TRUE(ReadNetworkObj(obj, &net).ok());
+  for (FillStage stage :
+       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
+    SCOPED_TRACE(std::string(FillStageName(stage)));
+    SurfaceOptions o;
+    o.stage = stage;
+    const SurfaceResult r = SurfaceNetwork(net, o);
+    ASSERT_TRUE(r.status.ok()) << r.status.message;
+    const Checked c = Check(net, r);
+    EXPECT_EQ(c.non_manifold_edges, 0);
+    EXPECT_EQ(c.misoriented_edges, 0);
+    EXPECT_EQ(c.intersecting_pairs, 0);
+    if (r.report.closed) {
+      EXPECT_EQ(c.border_edges, 0);
+    }
+  }
 }
 
 TEST(SurfaceNetworkTest, UserCycleWithTwoLoopsIsATube) {
