@@ -78,14 +78,21 @@ void ExpectClosedAndValid(const CurveNetwork& net, const SurfaceResult& r) {
   EXPECT_EQ(ShapeOf(r.mesh).pieces, 1);
 }
 
-TEST(SurfaceNetworkTest, CubeEdgesBecomeAClosedBoxAtEveryStage) {
-  const CurveNetwork net = CubeNetwork(6);
+// `check(stage, result)` for the network surfaced at each stage.
+template <typename F>
+void AtEveryStage(const CurveNetwork& net, const F& check) {
   for (FillStage stage :
        {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
     SCOPED_TRACE(std::string(FillStageName(stage)));
     SurfaceOptions o;
     o.stage = stage;
-    const SurfaceResult r = SurfaceNetwork(net, o);
+    check(stage, SurfaceNetwork(net, o));
+  }
+}
+
+TEST(SurfaceNetworkTest, CubeEdgesBecomeAClosedBoxAtEveryStage) {
+  const CurveNetwork net = CubeNetwork(6);
+  AtEveryStage(net, [&](FillStage stage, const SurfaceResult& r) {
     ExpectClosedAndValid(net, r);
     EXPECT_EQ(r.report.curves, 12);
     EXPECT_EQ(r.report.junctions, 8);
@@ -97,7 +104,7 @@ TEST(SurfaceNetworkTest, CubeEdgesBecomeAClosedBoxAtEveryStage) {
     if (stage == FillStage::kFair) {
       EXPECT_TRUE(r.report.faired_whole);
     }
-  }
+  });
 }
 
 // The rims of patches cut from real meshes (genus 0 and 3), every rim
@@ -193,12 +200,7 @@ TEST(SurfaceNetworkTest, LoneRimsAreDisksAndDanglingCurvesAreReported) {
 // path, the tube, its caps and the seam make one closed surface.
 TEST(SurfaceNetworkTest, CylinderWithASeamClosesAtEveryStage) {
   const CurveNetwork net = CylinderNetwork(24, true);
-  for (FillStage stage :
-       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
-    SCOPED_TRACE(std::string(FillStageName(stage)));
-    SurfaceOptions o;
-    o.stage = stage;
-    const SurfaceResult r = SurfaceNetwork(net, o);
+  AtEveryStage(net, [&](FillStage stage, const SurfaceResult& r) {
     ExpectClosedAndValid(net, r);
     EXPECT_EQ(ShapeOf(r.mesh).euler, 2);
     ASSERT_EQ(r.report.patches.size(), 3u);
@@ -223,7 +225,7 @@ TEST(SurfaceNetworkTest, CylinderWithASeamClosesAtEveryStage) {
       EXPECT_TRUE(tube.faired);
       EXPECT_GT(widest, 1.0);
     }
-  }
+  });
 }
 
 // Three rims joined by two seams at different angles: two tube faces, each
@@ -277,12 +279,7 @@ TEST(SurfaceNetworkTest, ARefinementFlipOntoACurveEdgeIsUndone) {
       "l 11 9 6 8 15 9 4 8\nl 2 7\nl 4 3 16 10 3\n");
   CurveNetwork net;
   ASSERT_TRUE(ReadNetworkObj(obj, &net).ok());
-  for (FillStage stage :
-       {FillStage::kTriangulate, FillStage::kRefine, FillStage::kFair}) {
-    SCOPED_TRACE(std::string(FillStageName(stage)));
-    SurfaceOptions o;
-    o.stage = stage;
-    const SurfaceResult r = SurfaceNetwork(net, o);
+  AtEveryStage(net, [&](FillStage stage, const SurfaceResult& r) {
     ASSERT_TRUE(r.status.ok()) << r.status.message;
     const Checked c = Check(net, r);
     EXPECT_EQ(c.non_manifold_edges, 0);
@@ -291,7 +288,7 @@ TEST(SurfaceNetworkTest, ARefinementFlipOntoACurveEdgeIsUndone) {
     if (r.report.closed) {
       EXPECT_EQ(c.border_edges, 0);
     }
-  }
+  });
 }
 
 TEST(SurfaceNetworkTest, UserCycleWithTwoLoopsIsATube) {
