@@ -7,7 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "cli/json_envelope.h"
 #include "commands.h"
 #include "exit_codes.h"
 
@@ -17,17 +21,51 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx);
 
 namespace {
 
-// Writes a generated polygon to `out` (- for stdout); a failure is
-// reported and sets the exit code.
-void WritePolygonOut(const PolygonData& polygon, const std::string& out,
-                     Context* ctx) {
-  const Status s = out == "-" ? WritePolygonText(std::cout, polygon)
-                              : WritePolygonText(out, polygon);
+// What a generate subcommand did, reported once: a failure (`fail_code`:
+// kExitUsage for unreadable input, else kExitFailed) as an error, or the
+// summary (on stderr when the data went to stdout); with --json, the
+// envelope instead, its own `fields` last.
+void Report(Context* ctx, bool json, const std::string& input,
+            const std::string& out, const Status& s, int fail_code,
+            const std::string& summary,
+            std::vector<std::pair<std::string, std::string>> fields) {
+  std::ostream& os = out == "-" ? std::cerr : std::cout;
+  const int code = s.ok() ? kExitOk : fail_code;
+  RaiseExitCode(ctx, code);
+  if (json) {
+    JsonEnvelope e;
+    e.input = input;
+    e.outcome = s.ok()                    ? "ok"
+                : fail_code == kExitUsage ? "input_error"
+                                          : "write_failed";
+    e.exit_code = code;
+    e.error = s.ok() ? "" : s.message;
+    e.output = s.ok() ? out : "";
+    e.fields = std::move(fields);
+    os << e.ToJson() << std::endl;
+    return;
+  }
   if (!s.ok()) {
-    std::cerr << "dotctl: " << s.message << "\n";
-    ctx->exit_code = kExitFailed;
+    PrintError(s.message);
+  } else if (!ctx->quiet) {
+    os << summary << std::endl;
   }
 }
+
+// Writes a generated polygon to `out` (- for stdout) and reports it.
+void WritePolygonOut(const PolygonData& polygon, const std::string& input,
+                     const std::string& out, bool json, Context* ctx) {
+  const Status s = out == "-" ? WritePolygonText(std::cout, polygon)
+                              : WritePolygonText(out, polygon);
+  const size_t n = polygon.vertices.size();
+  Report(ctx, json, input, out, s, kExitFailed,
+         std::to_string(n) + " vertices -> " + out,
+         {{"vertices", std::to_string(n)}});
+}
+
+constexpr const char* kJsonHelp =
+    "one JSON object (the envelope, then what was made) on stdout, or "
+    "stderr with -o -";
 
 }  // namespace
 
@@ -42,6 +80,7 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
     std::string name;
     int n = 200;
     std::string out;
+    bool json = false;
   };
   auto c = std::make_shared<CurveFlags>();
   CLI::App* curve = gen->add_subcommand(
@@ -54,20 +93,24 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       ->add_option("-o,--output", c->out,
                    "polygon file to write (- for stdout)")
       ->required();
+  curve->add_flag("--json", c->json, kJsonHelp);
   curve->callback([c, ctx] {
     const auto which = CurveFromName(c->name);
     if (!which) {
-      std::cerr << "dotctl: unknown curve '" << c->name << "'\n";
-      ctx->exit_code = kExitUsage;
+      Report(ctx, c->json, c->name, c->out,
+             InvalidArgument("unknown curve '" + c->name + "'"), kExitUsage, "",
+             {{"vertices", "0"}});
       return;
     }
-    WritePolygonOut(PolygonData{MakeCurve(*which, c->n), {}}, c->out, ctx);
+    WritePolygonOut(PolygonData{MakeCurve(*which, c->n), {}}, c->name, c->out,
+                    c->json, ctx);
   });
 
   struct LoopsFlags {
     std::string name, out;
     int n = 100;
     uint64_t seed = 1;
+    bool json = false;
   };
   auto lp = std::make_shared<LoopsFlags>();
   CLI::App* loops = gen->add_subcommand(
@@ -85,15 +128,17 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       ->add_option("-o,--output", lp->out,
                    "polygon file to write (- for stdout)")
       ->required();
+  loops->add_flag("--json", lp->json, kJsonHelp);
   loops->callback([lp, ctx] {
     WritePolygonOut(MakeLoopPair(*LoopPairFromName(lp->name), lp->n, lp->seed),
-                    lp->out, ctx);
+                    lp->name, lp->out, lp->json, ctx);
   });
 
   struct HoleFlags {
     std::string mesh, out;
     int triangles = 200;
     uint64_t seed = 1;
+    bool json = false;
   };
   auto h = std::make_shared<HoleFlags>();
   CLI::App* hole = gen->add_subcommand(
@@ -107,14 +152,14 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
   hole->add_option("-o,--output", h->out,
                    "polygon file to write (- for stdout)")
       ->required();
+  hole->add_flag("--json", h->json, kJsonHelp);
   AddGenerateHolesCommand(gen, ctx);
   hole->callback([h, ctx] {
     MeshData mesh;
     Hole result;
     Status s = ReadMeshFile(h->mesh, &mesh);
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitUsage;  // unreadable input
+    if (!s.ok()) {  // unreadable input
+      Report(ctx, h->json, h->mesh, h->out, s, kExitUsage, "", {});
       return;
     }
     s = GrowHole(mesh, h->triangles, h->seed, &result);
@@ -122,17 +167,13 @@ void AddGenerateCommand(CLI::App& app, Context* ctx) {
       s = h->out == "-" ? WritePolygonText(std::cout, result.boundary)
                         : WritePolygonText(h->out, result.boundary);
     }
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitFailed;
-      return;
-    }
-    if (!ctx->quiet) {
-      (h->out == "-" ? std::cerr : std::cout)
-          << "hole of " << result.triangles << " triangles, boundary of "
-          << result.boundary.vertices.size() << " vertices -> " << h->out
-          << std::endl;
-    }
+    const size_t n = result.boundary.vertices.size();
+    Report(ctx, h->json, h->mesh, h->out, s, kExitFailed,
+           "hole of " + std::to_string(result.triangles) +
+               " triangles, boundary of " + std::to_string(n) +
+               " vertices -> " + h->out,
+           {{"triangles", std::to_string(result.triangles)},
+            {"vertices", std::to_string(n)}});
   });
 }
 
@@ -141,6 +182,7 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
     std::string mesh, out, removed;
     int count = 10, triangles = 200, island = 0;
     uint64_t seed = 1;
+    bool json = false;
   };
   auto h = std::make_shared<HolesFlags>();
   CLI::App* holes = gen->add_subcommand(
@@ -165,12 +207,12 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
   holes->add_option("--removed", h->removed,
                     "where the removed patches go (default: OUTPUT's name "
                     "with .removed before the extension)");
+  holes->add_flag("--json", h->json, kJsonHelp);
   holes->callback([h, ctx] {
     MeshData mesh, holey, removed;
     Status s = ReadMeshFile(h->mesh, &mesh);
     if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitUsage;
+      Report(ctx, h->json, h->mesh, h->out, s, kExitUsage, "", {});
       return;
     }
     std::string removed_path = h->removed;
@@ -184,24 +226,22 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
                        &removed);
     if (s.ok()) s = WriteMeshFile(h->out, holey);
     if (s.ok()) s = WriteMeshFile(removed_path, removed);
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitFailed;
-      return;
-    }
-    if (!ctx->quiet) {
-      std::cout << h->count << " holes of " << h->triangles << " triangles"
-                << (h->island > 0
-                        ? " around islands of " + std::to_string(h->island)
-                        : std::string())
-                << " -> " << h->out << " (removed patches: " << removed_path
-                << ")\n";
-    }
+    Report(
+        ctx, h->json, h->mesh, h->out, s, kExitFailed,
+        std::to_string(h->count) + " holes of " + std::to_string(h->triangles) +
+            " triangles" +
+            (h->island > 0 ? " around islands of " + std::to_string(h->island)
+                           : std::string()) +
+            " -> " + h->out + " (removed patches: " + removed_path + ")",
+        {{"holes", std::to_string(h->count)},
+         {"removed", JsonQuote(removed_path)},
+         {"faces", std::to_string(holey.triangles.size())}});
   });
   struct NetworkFlags {
     std::string source, out;
     int segments = 4, patches = 100, keep_every = 1;
     uint64_t seed = 1;
+    bool json = false;
   };
   auto nf = std::make_shared<NetworkFlags>();
   CLI::App* network = gen->add_subcommand(
@@ -227,6 +267,7 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
   network->add_option("--seed", nf->seed, "random seed")->capture_default_str();
   network->add_option("-o,--output", nf->out, "network .obj (- for stdout)")
       ->required();
+  network->add_flag("--json", nf->json, kJsonHelp);
   network->callback([nf, ctx] {
     CurveNetwork net;
     Status s = OkStatus();
@@ -252,15 +293,11 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
                 : InvalidArgument("cannot write '" + nf->out + "'");
       }
     }
-    if (!s.ok()) {
-      std::cerr << "dotctl: " << s.message << "\n";
-      ctx->exit_code = kExitFailed;
-      return;
-    }
-    if (!ctx->quiet && nf->out != "-") {
-      std::cerr << net.polylines.size() << " polylines, " << net.vertices.size()
-                << " vertices -> " << nf->out << "\n";
-    }
+    Report(ctx, nf->json, nf->source, nf->out, s, kExitFailed,
+           std::to_string(net.polylines.size()) + " polylines, " +
+               std::to_string(net.vertices.size()) + " vertices -> " + nf->out,
+           {{"polylines", std::to_string(net.polylines.size())},
+            {"vertices", std::to_string(net.vertices.size())}});
   });
 }
 

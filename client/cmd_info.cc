@@ -5,7 +5,11 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "cli/json_envelope.h"
 #include "commands.h"
 #include "dot/v1/triangulation.grpc.pb.h"
 #include "exit_codes.h"
@@ -27,6 +31,29 @@ void SetDeadline(grpc::ClientContext* context, double seconds) {
       std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
 }
 
+// --json: the envelope of one call (no input; `s` null: no call made),
+// its own fields after, on `os`.
+void PrintCallJson(std::ostream& os, const grpc::Status* s,
+                   const std::string& outcome, int exit_code,
+                   const std::string& error, double latency_ms,
+                   const std::string& output,
+                   std::vector<std::pair<std::string, std::string>> fields) {
+  JsonEnvelope e;
+  e.outcome = outcome;
+  e.exit_code = exit_code;
+  if (s != nullptr) e.rpc_status = s->error_code();
+  e.error = error;
+  e.output = output;
+  e.latency_ms = latency_ms;
+  e.fields = std::move(fields);
+  os << e.ToJson() << std::endl;
+}
+
+// The outcome of a call that failed (the README's outcomes).
+std::string CallOutcome(const grpc::Status& s) {
+  return s.ok() ? "ok" : "call_failed";
+}
+
 }  // namespace
 
 void AddHealthCommand(CLI::App& app, Context* ctx) {
@@ -42,7 +69,10 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
                   "dot.v1.Triangulator)");
   cmd->add_option("--health-timeout", *timeout, "seconds to wait")
       ->capture_default_str();
-  cmd->callback([ctx, service, timeout] {
+  auto json = std::make_shared<bool>(false);
+  cmd->add_flag("--json", *json,
+                "one JSON object on stdout (the envelope, then \"status\")");
+  cmd->callback([ctx, service, timeout, json] {
     auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = grpc::health::v1::Health::NewStub(channel);
@@ -54,33 +84,44 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->Check(&context, request, &response);
     PrintVerbose(*ctx, "Check answered in " + MsText(t0));
+    const std::string status =
+        s.ok() ? grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
+                     response.status())
+               : "UNREACHABLE";
+    const int code =
+        !s.ok() ? (s.error_code() == grpc::StatusCode::UNAVAILABLE ||
+                           s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
+                       ? kExitUnavailable
+                       : kExitFailed)
+        : response.status() == grpc::health::v1::HealthCheckResponse::SERVING
+            ? kExitOk
+            : kExitFailed;
+    RaiseExitCode(ctx, code);
+    if (*json) {
+      PrintCallJson(std::cout, &s,
+                    s.ok() && code != kExitOk ? "not_serving" : CallOutcome(s),
+                    code, s.error_message(), MsSince(t0), "",
+                    {{"status", JsonQuote(status)}});
+      return;
+    }
     if (!s.ok()) {
       PrintError("UNREACHABLE (" +
                  std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message() + ")");
-      RaiseExitCode(
-          ctx, s.error_code() == grpc::StatusCode::UNAVAILABLE ||
-                       s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
-                   ? kExitUnavailable
-                   : kExitFailed);
       return;
     }
-    if (!ctx->quiet) {
-      std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
-                       response.status())
-                << "\n";
-    }
-    RaiseExitCode(
-        ctx, response.status() == grpc::health::v1::HealthCheckResponse::SERVING
-                 ? kExitOk
-                 : kExitFailed);
+    if (!ctx->quiet) std::cout << status << "\n";
   });
 }
 
 void AddInfoCommands(CLI::App& app, Context* ctx) {
   CLI::App* info = app.add_subcommand(
       "info", "Show the server's version, backends, limits and license.");
-  info->callback([ctx] {
+  auto info_json = std::make_shared<bool>(false);
+  info->add_flag("--json", *info_json,
+                 "one JSON object on stdout (the envelope, then "
+                 "\"server_info\": the ServerInfo message)");
+  info->callback([ctx, info_json] {
     auto channel = ChannelOrReport(ctx);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
@@ -90,10 +131,16 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->GetServerInfo(&context, {}, &i);
     PrintVerbose(*ctx, "GetServerInfo answered in " + MsText(t0));
+    RaiseExitCode(ctx, ExitCodeFor(s));
+    if (*info_json) {
+      PrintCallJson(std::cout, &s, CallOutcome(s), ExitCodeFor(s),
+                    s.error_message(), MsSince(t0), "",
+                    {{"server_info", s.ok() ? ProtoJson(i) : "null"}});
+      return;
+    }
     if (!s.ok()) {
       PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message());
-      RaiseExitCode(ctx, ExitCodeFor(s));
       return;
     }
     if (ctx->quiet) return;
@@ -122,13 +169,23 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
                    "file renamed into place once complete, so a failed call "
                    "leaves nothing behind")
       ->capture_default_str();
-  source->callback([ctx, out] {
+  auto source_json = std::make_shared<bool>(false);
+  source->add_flag("--json", *source_json,
+                   "one JSON object on stdout, or stderr with -o - (the "
+                   "envelope, then \"bytes\")");
+  source->callback([ctx, out, source_json] {
     // Checked before the call: the file can be written.
     AtomicOutput file;
     const std::string unusable = file.Open(*out);
+    std::ostream& json_out = *out == "-" ? std::cerr : std::cout;
     if (!unusable.empty()) {
-      PrintError(unusable);
       RaiseExitCode(ctx, kExitUsage);
+      if (*source_json) {
+        PrintCallJson(json_out, nullptr, "output_error", kExitUsage, unusable,
+                      0, "", {{"bytes", "0"}});
+      } else {
+        PrintError(unusable);
+      }
       return;
     }
     auto channel = ChannelOrReport(ctx);
@@ -148,16 +205,28 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
     const grpc::Status s = reader->Finish();
     PrintVerbose(*ctx, "GetSource: " + std::to_string(bytes) + " bytes in " +
                            MsText(t0));
+    const std::string written = s.ok() ? file.Commit() : "";
+    const int code = !s.ok()           ? ExitCodeFor(s)
+                     : written.empty() ? kExitOk
+                                       : kExitFailed;
+    RaiseExitCode(ctx, code);
+    if (*source_json) {
+      PrintCallJson(json_out, &s,
+                    !s.ok()           ? "call_failed"
+                    : written.empty() ? "ok"
+                                      : "write_failed",
+                    code, s.ok() ? written : s.error_message(), MsSince(t0),
+                    code == kExitOk ? *out : "",
+                    {{"bytes", std::to_string(code == kExitOk ? bytes : 0)}});
+      return;  // a failed call's temporary file goes with `file`
+    }
     if (!s.ok()) {
       PrintError(std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message());
-      RaiseExitCode(ctx, ExitCodeFor(s));
       return;  // the temporary file goes with `file`
     }
-    const std::string written = file.Commit();
     if (!written.empty()) {
       PrintError(written);
-      RaiseExitCode(ctx, kExitFailed);
       return;
     }
     if (!ctx->quiet) {

@@ -223,7 +223,8 @@ int Tally::Print(double seconds, const LoadFlags& flags, bool quiet) const {
   const char* polygons = flags.same_polygon ? "same" : "rotated";
   if (flags.json) {
     std::printf(
-        "{\"requests\":%d,\"succeeded\":%zu,\"errors\":%d,\"seconds\":%.3f,"
+        "{\"version\":1,\"requests\":%d,\"succeeded\":%zu,\"errors\":%d,"
+        "\"seconds\":%.3f,"
         "\"throughput_rps\":%.2f,\"latency_ms\":{\"mean\":%.3f,\"min\":%.3f,"
         "\"p50\":%.3f,\"p90\":%.3f,\"p95\":%.3f,\"p99\":%.3f,\"max\":%.3f},"
         "\"histogram\":[",

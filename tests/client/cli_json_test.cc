@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// --json on every dotctl subcommand that had none: generate (each kind),
+// health, info, source. Each prints the versioned envelope (README, "Using
+// the client") with its own fields, for success and failure alike.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "fixtures/dotctl_run.h"
+#include "fixtures/service_fixture.h"
+
+namespace dot {
+namespace {
+
+using testing::Dotctl;
+
+// The one line of `out` that is the envelope (notes may precede it).
+std::string Envelope(const std::string& out) {
+  const size_t at = out.find("{\"version\":1,");
+  if (at == std::string::npos) return "";
+  return out.substr(at, out.find('\n', at) - at);
+}
+
+void ExpectField(const std::string& json, const std::string& field) {
+  EXPECT_NE(json.find(field), std::string::npos) << json;
+}
+
+class JsonCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::TempDir("json-cli"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Path(const std::string& name) const {
+    return (dir_ / name).string();
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(JsonCliTest, GenerateSaysWhatItMade) {
+  auto r =
+      Dotctl("generate curve monkey -n 30 -o " + Path("m.xyz") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::string e = Envelope(r.out);
+  ExpectField(e, "\"outcome\":\"ok\"");
+  ExpectField(e, "\"output\":\"" + Path("m.xyz") + "\"");
+  ExpectField(e, "\"vertices\":30");
+  r = Dotctl("generate loops tube -n 20 -o - --json");  // JSON on stderr
+  ExpectField(Envelope(r.out), "\"vertices\":40");
+  r = Dotctl("generate network cube -s 2 -o " + Path("c.obj") + " --json");
+  ExpectField(Envelope(r.out), "\"polylines\":12");
+  r = Dotctl("generate holes " + std::string(DOT_MESH_DIR) +
+             "/elephant.off -k 2 -t 30 -o " + Path("e.off") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  e = Envelope(r.out);
+  ExpectField(e, "\"holes\":2");
+  ExpectField(e, "\"removed\":\"" + Path("e.removed.off") + "\"");
+  // Failures too: an unknown curve is unusable input (exit 2), an
+  // unreadable mesh as well.
+  r = Dotctl("generate curve nonesuch -o " + Path("x.xyz") + " --json");
+  EXPECT_EQ(r.code, 2);
+  ExpectField(Envelope(r.out), "\"outcome\":\"input_error\"");
+  r = Dotctl("generate hole " + Path("missing.off") + " -o " + Path("h.xyz") +
+             " --json");
+  EXPECT_EQ(r.code, 2);
+  ExpectField(Envelope(r.out), "\"exit_code\":2");
+}
+
+TEST_F(JsonCliTest, HealthInfoAndSourceAnswerInJson) {
+  const testing::RunningServer server =
+      testing::StartServer(testing::LoopbackConfig());
+  const std::string flag = "--server " + server.address + " ";
+  auto r = Dotctl(flag + "health --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::string e = Envelope(r.out);
+  ExpectField(e, "\"rpc_status\":\"OK\"");
+  ExpectField(e, "\"status\":\"SERVING\"");
+  r = Dotctl(flag + "info --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  e = Envelope(r.out);
+  ExpectField(e, "\"server_info\":{\"version\":");
+  ExpectField(e, "\"limits\":{");
+  // The loopback fixture has no source archive: the call fails, the
+  // envelope says so.
+  r = Dotctl(flag + "source -o " + Path("s.tgz") + " --json");
+  EXPECT_NE(r.code, 0);
+  e = Envelope(r.out);
+  ExpectField(e, "\"outcome\":\"call_failed\"");
+  ExpectField(e, "\"bytes\":0");
+  EXPECT_FALSE(std::filesystem::exists(Path("s.tgz")));
+  r = Dotctl(flag + "source -o /nonexistent/dir/s.tgz --json");
+  EXPECT_EQ(r.code, 2);
+  ExpectField(Envelope(r.out), "\"outcome\":\"output_error\"");
+}
+
+TEST_F(JsonCliTest, HealthOfNoServerIsUnreachable) {
+  const auto r =
+      Dotctl("--server unix:" + Path("nobody.sock") + " health --json");
+  EXPECT_EQ(r.code, 3);
+  const std::string e = Envelope(r.out);
+  ExpectField(e, "\"rpc_status\":\"UNAVAILABLE\"");
+  ExpectField(e, "\"status\":\"UNREACHABLE\"");
+}
+
+}  // namespace
+}  // namespace dot
