@@ -144,14 +144,15 @@ bool SplitSeam(const NetworkGraph& g, const std::vector<CurveUse>& loop,
     }
   }
   const Vec3& q = g.vertices[walk_b[i_b]];
-  // Spaced as the loop's edges, at most as many points as the loop has.
+  // Spaced as the loop's edges, at most as many points as the loop has,
+  // and at least one: a path of one edge could be a curve's edge.
   const double mean_edge =
       (len_a.back() + len_b.back() + 2 * ArcLengths(g, seam).back()) /
       static_cast<double>(walk_a.size() + walk_b.size() + 2 * seam.size() - 4);
   const double steps =
       mean_edge > 0 ? std::round(Distance(p, q) / mean_edge) : 1;
   const auto points = static_cast<int32_t>(std::clamp(
-      steps - 1, 0.0, static_cast<double>(walk_a.size() + walk_b.size())));
+      steps - 1, 1.0, static_cast<double>(walk_a.size() + walk_b.size())));
   const auto first_new = static_cast<int32_t>(g.vertices.size());
   std::vector<int32_t> path;
   for (int32_t t = 1; t <= points; ++t) {

@@ -58,7 +58,8 @@ struct Work {
 std::set<int32_t> SharedEdgePatches(const MeshData& m,
                                     const std::vector<int32_t>& owner,
                                     const std::vector<Work>& work,
-                                    const std::set<Chord>& curve_edges) {
+                                    const std::set<Chord>& curve_edges,
+                                    std::string* what = nullptr) {
   std::map<Chord, std::vector<size_t>> faces_on;
   for (size_t f = 0; f < m.triangles.size(); ++f) {
     const Triangle& t = m.triangles[f];
@@ -72,7 +73,15 @@ std::set<int32_t> SharedEdgePatches(const MeshData& m,
     for (size_t f : faces) several = several || owner[f] != owner[faces[0]];
     for (size_t f : faces) {
       const bool chord = !work[owner[f]].boundary.count(edge);
-      if (chord && (curve || several)) out.insert(owner[f]);
+      if (chord && (curve || several)) {
+        out.insert(owner[f]);
+        if (what != nullptr && what->empty()) {
+          *what = "patch " + std::to_string(owner[f]) + " has a chord on " +
+                  (curve ? "a curve's edge" : "another patch's edge") +
+                  " (graph vertices " + std::to_string(edge.first) + " and " +
+                  std::to_string(edge.second) + ")";
+        }
+      }
     }
     if (faces.size() < 2 || curve) continue;
     bool same_way = false;
@@ -926,10 +935,14 @@ SurfaceResult Surface(const CurveNetwork& network,
                                std::to_string(report.intersecting_pairs) +
                                " pairs)"));
   }
-  if (!SharedEdgePatches(mesh, owner, work, curve_edges).empty()) {
+  std::string what;
+  if (!SharedEdgePatches(mesh, owner, work, curve_edges, &what).empty()) {
     return fail(MakeStatus(StatusCode::kInternal,
                            "patches meet along an edge that is not a curve "
-                           "they share, after every check"));
+                           "they share, after every check: " +
+                               (what.empty() ? "an edge with more than two "
+                                               "faces, or two the same way"
+                                             : what)));
   }
   std::vector<int> uses(g.curves.size(), 0);
   for (int p : live) {

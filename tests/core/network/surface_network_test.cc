@@ -267,28 +267,76 @@ TEST(SurfaceNetworkTest, StackedTubesWithSeamsClose) {
   EXPECT_EQ(seams, 2);
 }
 
-// Found by network_fuzz: a seam patch whose refinement flipped a chord
-// onto a curve's edge (then shared by four faces once the patches on that
-// curve were surfaced). Such a refinement is undone; the mesh keeps the
-// contract whatever is left open.
-TEST(SurfaceNetworkTest, ARefinementFlipOntoACurveEdgeIsUndone) {
-  std::istringstream obj(
+// Found by network_fuzz, each kept to the contract at every stage,
+// whatever is left open:
+//  - a seam patch whose refinement flipped a chord onto a curve's edge
+//    (then shared by four faces once the patches on that curve were
+//    surfaced): such a refinement is undone;
+//  - a seam patch whose new path was one edge, the same as a curve's: a
+//    new path has a point at least.
+TEST(SurfaceNetworkTest, FuzzFoundNetworksKeepTheContract) {
+  const char* networks[] = {
       "v -3 0 -1\nv -1 -1 0\nv -1 1 3\nv 2 2 0\nv 1 -3 -2\nv -3 -3 -2\n"
       "v -3 1 -3\nv 0 -2 -3\nv -3 1 -3\nv 0 -2 1\nv -2 1 3\nv 2 -2 -3\n"
       "v -2 -1 -3\nv -1 -3 -3\nv -3 -3 -3\nv -3 -3 -2\n"
-      "l 11 9 6 8 15 9 4 8\nl 2 7\nl 4 3 16 10 3\n");
-  CurveNetwork net;
-  ASSERT_TRUE(ReadNetworkObj(obj, &net).ok());
-  AtEveryStage(net, [&](FillStage stage, const SurfaceResult& r) {
-    ASSERT_TRUE(r.status.ok()) << r.status.message;
-    const Checked c = Check(net, r);
-    EXPECT_EQ(c.non_manifold_edges, 0);
-    EXPECT_EQ(c.misoriented_edges, 0);
-    EXPECT_EQ(c.intersecting_pairs, 0);
-    if (r.report.closed) {
-      EXPECT_EQ(c.border_edges, 0);
-    }
-  });
+      "l 11 9 6 8 15 9 4 8\nl 2 7\nl 4 3 16 10 3\n",
+      R"(v -3 -2 3
+v 1 -3 1
+v 3 0 1
+v -3 3 0
+v 3 -2 2
+v 0 1 0
+v 0 -3 0
+v -1 1 0
+v -1 3 -1
+v -3 -3 2
+v 1 -3 -1
+v 2 2 -1
+v -3 3 -1
+v 3 1 -3
+v -2 3 1
+v 1 -3 -2
+v -3 1 3
+v 3 0 3
+v -2 2 0
+vn -1 -1 1
+vn 1 -1 1
+vn 1 1 1
+vn -1 0 1
+vn 0 0 1
+vn 0 0 1
+vn -1 -1 1
+vn -1 -1 1
+vn 1 1 1
+vn 1 1 1
+vn 0 1 1
+vn 0 1 1
+vn 0 1 1
+vn -1 1 1
+vn 0 1 1
+vn 0 0 1
+vn 0 0 1
+vn 1 0 1
+vn 0 1 1
+l 10 16 13 6 17
+l 1 13 18 12 6 5 14
+l 3 6 8 17 16 12 2 1
+)"};
+  for (const char* text : networks) {
+    std::istringstream obj(text);
+    CurveNetwork net;
+    ASSERT_TRUE(ReadNetworkObj(obj, &net).ok());
+    AtEveryStage(net, [&](FillStage, const SurfaceResult& r) {
+      ASSERT_TRUE(r.status.ok()) << r.status.message;
+      const Checked c = Check(net, r);
+      EXPECT_EQ(c.non_manifold_edges, 0);
+      EXPECT_EQ(c.misoriented_edges, 0);
+      EXPECT_EQ(c.intersecting_pairs, 0);
+      if (r.report.closed) {
+        EXPECT_EQ(c.border_edges, 0);
+      }
+    });
+  }
 }
 
 TEST(SurfaceNetworkTest, UserCycleWithTwoLoopsIsATube) {
