@@ -23,6 +23,14 @@ RUN mkdir -p /out/usr/share/dot \
  && tar --exclude=./.git -czf /out/usr/share/dot/dot-source.tar.gz .
 
 FROM debian:${DEBIAN}-slim
+ARG DOT_VERSION=0.1.0
+ARG DOT_COMMIT=unknown
+LABEL org.opencontainers.image.title="dot-server" \
+      org.opencontainers.image.description="Optimal intersection-free triangulation of 3D polygons, hole filling and curve networks into surfaces, as a gRPC service (dot-server, dotctl)" \
+      org.opencontainers.image.version="${DOT_VERSION}" \
+      org.opencontainers.image.revision="${DOT_COMMIT}" \
+      org.opencontainers.image.licenses="AGPL-3.0-or-later" \
+      org.opencontainers.image.base.name="debian:${DEBIAN}-slim"
 RUN apt-get update \
  && apt-get install -y --no-install-recommends \
       libgrpc++1.51 libgrpc29 libprotobuf32 libabsl20220623 libre2-9 \
