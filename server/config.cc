@@ -212,6 +212,9 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
       "unaccepted, as after running out of file descriptors (0: never)");
   Add(app, "--log-level", &c->log_level, "DOT_LOG_LEVEL",
       "trace, debug, info, warn, error or off");
+  Add(app, "--log-format", &c->log_format, "DOT_LOG_FORMAT",
+      "text, or json: one object a line (time, level, message), for log "
+      "collectors; times in UTC either way");
   Add(app, "--source-archive", &s.source_archive, "DOT_SOURCE_ARCHIVE",
       "tar.gz of this server's source, served by GetSource (AGPL-3.0 s. 13)");
   Add(app, "--source-url", &s.source_url, "DOT_SOURCE_URL",

@@ -57,6 +57,7 @@ struct ServerConfig {
   // descriptors): dot-server then drains and exits 70. 0: no watchdog.
   int listener_patience_s = 20;
   std::string log_level = "info";
+  std::string log_format = "text";  // text or json (one object a line)
   // Set by FinalizeConfig: adjustments it made, for the start-up log.
   std::vector<std::string> notes;
 };

@@ -15,6 +15,7 @@
 #include "config.h"
 #include "dot_server.h"
 #include "listener_watchdog.h"
+#include "log_format.h"
 
 // Exit status when the listener stopped accepting (EX_SOFTWARE).
 constexpr int kExitListenerDead = 70;
@@ -40,7 +41,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   spdlog::set_level(level);
-  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ %v");
+  if (config.log_format != "text" && config.log_format != "json") {
+    spdlog::error("unknown --log-format '{}' (text or json)",
+                  config.log_format);
+    return 2;
+  }
+  dot::server::SetLogFormat(config.log_format == "json");
 
   // By default glibc maps large blocks fresh for every request and hands
   // freed compute-thread heaps back to the kernel, so each solve page-faults

@@ -8,9 +8,16 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "process_metrics.h"
 
 namespace dot::server {
 namespace {
+
+const prometheus::Histogram::BucketBoundaries kLatencyBuckets = {
+    0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
+    0.5,   1,      2.5,   5,    10,    30,   60};
 
 // Debian's civetweb 1.15 runs each request on a 100 KB thread stack, and
 // both its own answers (404 for `GET /`, 405 for `HEAD /metrics`) and
@@ -106,6 +113,23 @@ ServerMetrics::ServerMetrics(const MetricsOptions& options)
   cache_misses_ = &lookups.Add({{"result", "miss"}});
   cache_bytes_ =
       gauge("dot_space_cache_bytes", "Memory held by the search-space cache");
+  prometheus::BuildGauge()
+      .Name("dot_build_info")
+      .Help(
+          "Always 1; the labels say which build serves: version, commit, "
+          "the Delaunay backends compiled in")
+      .Register(*registry_)
+      .Add({{"version", DOT_VERSION},
+            {"commit", DOT_GIT_COMMIT},
+            {"backends", DOT_WITH_TETGEN ? "cgal,tetgen" : "cgal"}})
+      .Set(1);
+  // Every RPC's series exist from the start (at zero), so rates and alerts
+  // see a server that has served nothing yet.
+  for (const char* rpc :
+       {"Triangulate", "TriangulateBatch", "FillHoles", "SurfaceNetwork"}) {
+    requests_->Add({{"rpc", rpc}, {"status", "OK"}});
+    latency_->Add({{"rpc", rpc}}, kLatencyBuckets);
+  }
   if (options.port > 0) {
     // Its own small pool of HTTP threads, each giving up on a client that
     // is silent for `request_timeout_ms`, and no keep-alive: slow or idle
@@ -134,10 +158,7 @@ bool MetricsSupportIpv6() { return mg_check_feature(8) != 0; }
 void ServerMetrics::RequestDone(const std::string& rpc,
                                 const std::string& status, double seconds) {
   requests_->Add({{"rpc", rpc}, {"status", status}}).Increment();
-  static const prometheus::Histogram::BucketBoundaries kBuckets = {
-      0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25,
-      0.5,   1,      2.5,   5,    10,    30,   60};
-  latency_->Add({{"rpc", rpc}}, kBuckets).Observe(seconds);
+  latency_->Add({{"rpc", rpc}}, kLatencyBuckets).Observe(seconds);
 }
 
 void ServerMetrics::RequestStopped(const std::string& rpc,
@@ -159,7 +180,9 @@ void ServerMetrics::CacheLookup(bool hit, const SpaceCache::Counters& c) {
 }
 
 std::string ServerMetrics::Scrape() const {
-  return prometheus::TextSerializer().Serialize(registry_->Collect());
+  std::vector<prometheus::MetricFamily> families = registry_->Collect();
+  for (auto& f : CollectProcessMetrics()) families.push_back(std::move(f));
+  return prometheus::TextSerializer().Serialize(families);
 }
 
 }  // namespace dot::server

@@ -12,7 +12,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <future>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -110,6 +112,60 @@ TEST(ServerProcessTest, ExitWithStdinEndsWhenTheParentsPipeCloses) {
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);  // it exits by itself
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+// --log-format json: every line one object (time in UTC, level, message),
+// for log collectors; text lines carry the same UTC time.
+TEST(ServerProcessTest, LogFormatJsonIsOneObjectALine) {
+  for (const std::string format : {"json", "text"}) {
+    SCOPED_TRACE(format);
+    const std::string log =
+        ::testing::TempDir() + "dot-server-log-" + format + ".txt";
+    const std::string address =
+        "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
+    std::vector<std::string> args = {DOT_SERVER_PATH,
+                                     "--listen",
+                                     address,
+                                     "--metrics-port",
+                                     "0",
+                                     "--log-format",
+                                     format,
+                                     "--drain-seconds",
+                                     "1"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, args[0].c_str(), &actions, nullptr,
+                            argv.data(), environ),
+              0);
+    posix_spawn_file_actions_destroy(&actions);
+    auto channel =
+        grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+    ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
+                                          std::chrono::seconds(10)));
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    std::ifstream in(log);
+    std::string line;
+    int lines = 0;
+    const std::regex json(
+        R"re(\{"time":"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z","level":"(info|warning|error)","message":"([^"\\]|\\.)*"\})re");
+    const std::regex text(
+        R"re(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z \S+ .*)re");
+    while (std::getline(in, line)) {
+      ++lines;
+      EXPECT_TRUE(std::regex_match(line, format == "json" ? json : text))
+          << line;
+    }
+    EXPECT_GE(lines, 2);  // listening, then shutting down
+  }
 }
 
 TEST(ServerProcessTest, ProgressIsStreamedForLongRuns) {
