@@ -39,8 +39,8 @@ namespace {
 const dot::CurveNetwork* g_network = nullptr;
 const dot::SurfaceOptions* g_options = nullptr;
 
-[[noreturn]] void Fail(const char* what) {
-  std::fprintf(stderr, "oracle failed: %s\n", what);
+// The input being surfaced: its options and the network as OBJ.
+void PrintInput() {
   if (g_options != nullptr) {
     std::fprintf(stderr, "stage %s, skip_longest %d, %zu user cycles:\n",
                  std::string(dot::FillStageName(g_options->stage)).c_str(),
@@ -58,6 +58,11 @@ const dot::SurfaceOptions* g_options = nullptr;
     (void)dot::WriteNetworkObj(obj, *g_network);
     std::fprintf(stderr, "network:\n%s", obj.str().c_str());
   }
+}
+
+[[noreturn]] void Fail(const char* what) {
+  std::fprintf(stderr, "oracle failed: %s\n", what);
+  PrintInput();
   abort();
 }
 
@@ -207,6 +212,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   g_network = &net;
   g_options = &options;
+  // A crash prints nothing: NETWORK_FUZZ_PRINT=1 prints every input first.
+  if (std::getenv("NETWORK_FUZZ_PRINT") != nullptr) PrintInput();
   dot::Control control;
   control.deadline =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(200);

@@ -3,9 +3,11 @@
 // patch alone (its curves are its border, which refinement never splits or
 // flips, so neighbouring patches still meet vertex for vertex).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/refine.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -221,6 +223,28 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
     if (sm.is_border(h)) {
       longest = std::max(
           longest, std::sqrt(CGAL::to_double(PMP::squared_edge_length(h, sm))));
+    }
+  }
+  if (interior) {
+    // Isotropic remeshing needs a valid manifold mesh of proper triangles
+    // (network_fuzz crashed it inside CGAL with less), ...
+    bool fit = CGAL::is_valid_polygon_mesh(sm);
+    for (VertexIndex v : sm.vertices()) {
+      fit = fit && !PMP::is_non_manifold_vertex(v, sm);
+    }
+    for (FaceIndex f : faces) {
+      fit = fit && !PMP::is_degenerate_triangle_face(f, sm);
+    }
+    // ... nor edges a millionth of the patch's size (coordinates far
+    // apart in magnitude: one crashed it too).
+    for (auto e : sm.edges()) {
+      fit = fit && PMP::edge_length(e, sm) > 1e-6;
+    }
+    if (!fit) {
+      report->reason += std::string(report->reason.empty() ? "" : "; ") +
+                        "not refined: a pinched vertex, a flat triangle or "
+                        "an edge a millionth of the patch";
+      return OkStatus();
     }
   }
   std::vector<FaceIndex> new_faces;
