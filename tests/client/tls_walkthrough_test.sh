@@ -8,7 +8,7 @@ set -euo pipefail
 readme=$1 server=$2 dotctl=$3
 command -v openssl >/dev/null || { echo "openssl not installed: skipped"; exit 77; }
 work=$(mktemp -d)
-trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
+trap 'rm -rf "$work"' EXIT  # the walk-through stops its own server
 mkdir "$work/bin"
 ln -s "$(realpath "$server")" "$work/bin/dot-server"
 ln -s "$(realpath "$(dirname "$server")/dot-delaunay-helper")" \
