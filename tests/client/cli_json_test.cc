@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// --json on every dotctl subcommand that had none: generate (each kind),
-// health, info, source. Each prints the versioned envelope (README, "Using
-// the client") with its own fields, for success and failure alike.
+// dotctl for scripts: --json on every subcommand that had none (generate,
+// health, info, source), each printing the versioned envelope (README,
+// "Using the client") with its own fields, for success and failure alike;
+// and shell completion.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -99,6 +100,31 @@ TEST_F(JsonCliTest, HealthOfNoServerIsUnreachable) {
   const std::string e = Envelope(r.out);
   ExpectField(e, "\"rpc_status\":\"UNAVAILABLE\"");
   ExpectField(e, "\"status\":\"UNREACHABLE\"");
+}
+
+// bash completion from the CLI's own definition: subcommands at each
+// level, then that subcommand's options (and the global ones after it).
+TEST(CompletionCliTest, OffersSubcommandsAndTheirOptions) {
+  auto complete = [](const std::string& words, int cword) {
+    const std::string script = "source <(" + std::string(DOT_DOTCTL_PATH) +
+                               " completion bash); COMP_WORDS=(" + words +
+                               "); COMP_CWORD=" + std::to_string(cword) +
+                               "; _dotctl; echo \"[${COMPREPLY[*]}]\"";
+    return testing::RunShell("bash -c '" + script + "'").out;
+  };
+  EXPECT_NE(complete("dotctl gen", 1).find("[generate"), std::string::npos);
+  const std::string net = complete("dotctl generate network --k", 3);
+  EXPECT_NE(net.find("--keep-every"), std::string::npos) << net;
+  const std::string sub = complete("dotctl generate ne", 2);
+  EXPECT_NE(sub.find("network"), std::string::npos) << sub;
+  const std::string after = complete("dotctl surface x.obj --ti", 3);
+  EXPECT_NE(after.find("--timeout"), std::string::npos) << after;
+  EXPECT_NE(after.find("--time-budget-ms"), std::string::npos) << after;
+  // zsh gets the same function through bashcompinit.
+  const auto zsh = Dotctl("completion zsh");
+  EXPECT_EQ(zsh.code, 0);
+  EXPECT_NE(zsh.out.find("bashcompinit"), std::string::npos);
+  EXPECT_NE(Dotctl("completion fish").code, 0);
 }
 
 }  // namespace

@@ -12,6 +12,16 @@ trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 echo "installed: $(cd "$work/prefix" && find include/dot -name '*.h' | wc -l) headers," \
      "$(cd "$work/prefix" && find . -name 'libdot_core.a' -o -name 'dotConfig.cmake' -o -name dot.pc | sort | tr '\n' ' ')"
+# With the binaries: bash completion, and man pages where help2man is.
+test -f "$work/prefix/share/bash-completion/completions/dotctl" ||
+  { echo "no bash completion installed"; exit 1; }
+if command -v help2man > /dev/null; then
+  for page in dotctl dot-server; do
+    test -s "$work/prefix/share/man/man1/$page.1" ||
+      { echo "no man page of $page installed"; exit 1; }
+  done
+  echo "man pages: dotctl.1 dot-server.1; bash completion: dotctl"
+fi
 # 1. CMake: find_package(dot) -> dot::core.
 cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
