@@ -43,7 +43,7 @@ void Note(PatchReport* r, const std::string& why) {
 
 struct Work {
   std::vector<std::vector<int32_t>> loops;  // graph vertex ids
-  std::set<Chord> boundary;                 // its loops' edges
+  std::map<Chord, int> boundary;            // its loops' edges, times run
   std::vector<Chord> forbidden;             // network edges, chords to avoid
   PatchMesh dot;                            // the DOT patch
   PatchMesh mesh;                           // as it stands (refined)
@@ -53,8 +53,9 @@ struct Work {
 
 // Patches whose faces meet others' wrongly along an edge: a chord of a
 // patch (an edge not on its loops) that is a curve's edge or an edge of
-// another patch (refinement's flips can make one), or an edge that is no
-// curve's with more than two faces or two that run it the same way.
+// another patch (refinement's flips can make one), more faces of a patch on
+// an edge of its loops than they run it, or an edge that is no curve's
+// with more than two faces or two that run it the same way.
 std::set<int32_t> SharedEdgePatches(const MeshData& m,
                                     const std::vector<int32_t>& owner,
                                     const std::vector<Work>& work,
@@ -71,6 +72,24 @@ std::set<int32_t> SharedEdgePatches(const MeshData& m,
     const bool curve = curve_edges.count(edge) > 0;
     bool several = false;
     for (size_t f : faces) several = several || owner[f] != owner[faces[0]];
+    // A patch has a face on an edge of its loops once per time they run
+    // it (a flip inside a seam patch can add one where its loop runs the
+    // edge elsewhere).
+    std::map<int32_t, int> faces_of;
+    for (size_t f : faces) ++faces_of[owner[f]];
+    for (const auto& [p, n] : faces_of) {
+      const auto run = work[p].boundary.find(edge);
+      if (run != work[p].boundary.end() && n > run->second) {
+        out.insert(p);
+        if (what != nullptr && what->empty()) {
+          *what = "patch " + std::to_string(p) + " has " + std::to_string(n) +
+                  " faces on an edge its loops run " +
+                  std::to_string(run->second) + " times (graph vertices " +
+                  std::to_string(edge.first) + " and " +
+                  std::to_string(edge.second) + ")";
+        }
+      }
+    }
     for (size_t f : faces) {
       const bool chord = !work[owner[f]].boundary.count(edge);
       if (chord && (curve || several)) {
@@ -591,7 +610,7 @@ SurfaceResult Surface(const CurveNetwork& network,
         r.loop_vertices.back().push_back(g.input_of_vertex[v]);
       r.boundary_vertices += static_cast<int32_t>(vs.size());
       for (size_t k = 0; k < vs.size(); ++k) {
-        w.boundary.insert(Key(vs[k], vs[(k + 1) % vs.size()]));
+        ++w.boundary[Key(vs[k], vs[(k + 1) % vs.size()])];
         in_patch.insert(vs[k]);
       }
     }

@@ -274,6 +274,9 @@ TEST(SurfaceNetworkTest, StackedTubesWithSeamsClose) {
 //    surfaced): such a refinement is undone;
 //  - a seam patch whose new path was one edge, the same as a curve's: a
 //    new path has a point at least.
+//  - a seam patch whose side runs through a junction twice, whose
+//    refinement flipped a chord onto an edge its loop runs elsewhere (four
+//    faces on it): faces on an edge are counted against the runs.
 TEST(SurfaceNetworkTest, FuzzFoundNetworksKeepTheContract) {
   const char* networks[] = {
       "v -3 0 -1\nv -1 -1 0\nv -1 1 3\nv 2 2 0\nv 1 -3 -2\nv -3 -3 -2\n"
@@ -321,6 +324,27 @@ vn 0 1 1
 l 10 16 13 6 17
 l 1 13 18 12 6 5 14
 l 3 6 8 17 16 12 2 1
+)",
+      R"(v 1 0 0
+v 0.70710678118654757 0.70710678118654746 0
+v 6.1232012300455816e-17 1 0
+v -0.70721356237309496 0.70710654178618759 0
+v -1 1.2246467991473532e-16 0
+v -0.70710678118654768 -0.70710678118654746 0
+v -0.18369701987210296 6 -10
+v 0.70710678118654735 -2.7071067811865475 0
+v 1 0 2
+v 0.70710678118657 5740.7071067811867 0
+v 6.123233995736766e-17 5.5809999999999998e-14 1
+v -0.70721356237309496 0.70710099999999998 2
+v -0.70710678118654746 0.70710678118654002 772
+v -0.70710678118654768 -0.70710678118654746 2
+v -1.8369701987210297e-16 -1 2
+v 0.70710678118654735 -0.70710678117648684 2
+v 1 0 1
+l 1 2 3 4 5 6 7 4 1
+l 9 10 11 12 13 14 15 16 9
+l 1 17 9
 )"};
   for (const char* text : networks) {
     std::istringstream obj(text);
