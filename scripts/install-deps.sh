@@ -10,8 +10,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcgal-demo   # real meshes (data.tar.gz) for the hole tests
   openssl curl gnuplot-nox
+  help2man  # man pages of dotctl and dot-server, from their --help
   python3-grpcio  # raw-wire service tests (/usr/bin/python3)
   python3-protobuf python3-numpy python3-pytest  # dot_client and its tests
+  python3-meshio  # dot_client's mesh files (optional for it; its tests use it)
   blender  # the Blender add-on's headless tests (3.4, on the system Python)
 )
 missing=()

@@ -964,7 +964,7 @@ def test_run_locally_starts_and_stops_a_server(address):
         assert bpy.ops.mesh.dot_fill_holes(stage='TRIANGULATE') == {'FINISHED'}
         check_mesh(sphere)
         assert dot.connection.local_server_running()
-        process = dot.connection._local["process"]
+        process = dot.connection._local["server"].process
     finally:
         prefs().server_address = address
     addon_utils.disable("dot")

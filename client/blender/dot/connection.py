@@ -1,13 +1,11 @@
 # SPDX-License-Identifier: AGPL-3.0-or-later
 """The add-on's server: the one in the preferences, or a dot-server this
-add-on starts on a loopback port ("run locally") and stops with Blender."""
+add-on starts on a loopback port ("run locally") and stops with Blender.
+Starting and stopping it is dot_client.LocalServer's, the one
+implementation the Python client's local mode uses too."""
 import atexit
 import os
-import shutil
-import socket
-import subprocess
 import threading
-import time
 
 import grpc
 
@@ -18,80 +16,42 @@ except ImportError:  # running from client/blender with dot_client on sys.path
 
 _lock = threading.Lock()
 _clients = {}
-_local = {"process": None, "address": None, "executable": None}
-
-
-def _free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _find_executable(name):
-    if os.path.sep in name:
-        path = os.path.abspath(os.path.expanduser(name))
-        return path if os.access(path, os.X_OK) else None
-    return shutil.which(name)
+_local = {"server": None, "executable": None}
 
 
 def local_server(executable="dot-server", wait_s=30.0):
     """The address of the dot-server this add-on runs on 127.0.0.1, started
-    (from PATH, or the given path) on first use."""
+    on first use: ``executable`` is a path or a name on PATH; the default
+    name (or "") means $DOT_SERVER_PATH when set, else dot-server on PATH.
+
+    It is a dot_client.LocalServer: started with --exit-with-stdin on a
+    pipe only Blender holds, so however Blender ends (killed, it runs no
+    atexit hook) the server reads end-of-file and exits instead of
+    listening on."""
     with _lock:
-        p = _local["process"]
-        if p is not None and p.poll() is None and \
+        s = _local["server"]
+        if s is not None and s.running() and \
                 _local["executable"] == executable:
-            return _local["address"]
+            return s.address
         _stop_locked()
-        path = _find_executable(executable)
-        if path is None:
+        try:
+            s = dot_client.LocalServer(
+                None if executable in ("", "dot-server") else executable,
+                transport="tcp", log_level="warn", wait_s=wait_s)
+        except dot_client.DotError as e:
             raise dot_client.DotError(
                 grpc.StatusCode.UNAVAILABLE,
-                f"no DOT server is set and {executable!r} is "
-                "not on PATH: set a server in the add-on's preferences or "
-                "install dot-server")
-        address = f"127.0.0.1:{_free_port()}"
-        process = subprocess.Popen(
-            [path, "--listen", address, "--metrics-port", "0",
-             "--log-level", "warn", "--drain-seconds", "1",
-             "--exit-with-stdin"],
-            # Blender holds the pipe's only write end: however Blender
-            # ends (killed, it runs no atexit hook), the server reads EOF
-            # and exits instead of listening on.
-            stdin=subprocess.PIPE, stdout=subprocess.DEVNULL)
-        _local.update(process=process, address=address, executable=executable)
-    with dot_client.Client(address) as c:
-        deadline = time.monotonic() + wait_s
-        while True:
-            if process.poll() is not None:
-                raise dot_client.DotError(
-                    grpc.StatusCode.UNAVAILABLE,
-                    f"the local dot-server ({path}) exited "
-                    f"with status {process.returncode}")
-            try:
-                if c.health(timeout=1) == "SERVING":
-                    return address
-            except dot_client.DotError:
-                pass
-            if time.monotonic() > deadline:
-                stop_local_server()
-                raise dot_client.DotError(
-                    grpc.StatusCode.UNAVAILABLE,
-                    f"the local dot-server did not start in "
-                    f"{wait_s:.0f} s")
-            time.sleep(0.05)
+                f"no DOT server is set and {e.message}: set a server in "
+                "the add-on's preferences or install dot-server") from None
+        _local.update(server=s, executable=executable)
+        return s.address
 
 
 def _stop_locked():
-    p = _local["process"]
-    _local.update(process=None, address=None, executable=None)
-    if p is not None and p.poll() is None:
-        p.terminate()
-        try:
-            p.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            p.kill()
-            p.wait()
+    s = _local["server"]
+    _local.update(server=None, executable=None)
+    if s is not None:
+        s.stop()
 
 
 def stop_local_server():
@@ -101,8 +61,8 @@ def stop_local_server():
 
 
 def local_server_running():
-    p = _local["process"]
-    return p is not None and p.poll() is None
+    s = _local["server"]
+    return s is not None and s.running()
 
 
 atexit.register(stop_local_server)

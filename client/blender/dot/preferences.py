@@ -31,7 +31,8 @@ class DotPreferences(bpy.types.AddonPreferences):
     server_executable: StringProperty(
         name="dot-server", subtype='FILE_PATH', default="dot-server",
         description="The dot-server program Run Locally starts (a name on "
-        "PATH, or a path)")
+        "PATH, or a path; dot-server: $DOT_SERVER_PATH when set, else "
+        "dot-server on PATH)")
     timeout: FloatProperty(
         name="Timeout", default=300.0, min=1.0, subtype='TIME', unit='TIME',
         description="Seconds a call may take before it is cancelled")

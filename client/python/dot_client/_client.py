@@ -3,16 +3,19 @@
 from __future__ import annotations
 
 import json
+import sys
 import threading
-from typing import (Any, Callable, Dict, Iterator, List, Optional, Sequence,
-                    Union)
+from typing import (TYPE_CHECKING, Any, Callable, Dict, Iterator, List,
+                    Optional, Sequence, Union, overload)
 
 import grpc
 import numpy as np
 
 from . import _validate as check
 from . import wire
-from ._errors import DotError, InvalidInput, NoTriangulation, from_rpc_error
+from ._errors import (DotError, FillStopped, InvalidInput, NoTriangulation,
+                      from_rpc_error)
+from ._local import LocalServer
 from ._proto.dot.v1 import triangulation_pb2 as pb
 from ._proto.dot.v1 import triangulation_pb2_grpc as pb_grpc
 from ._proto.grpc.health.v1 import health_pb2, health_pb2_grpc
@@ -20,6 +23,11 @@ from ._types import (FillOptions, FillPatches, FillProgress, FillReport,
                      FillResult, Progress, Result, ServerInfo, SurfaceOptions,
                      SurfaceProgress, SurfaceResult, TriangulateOptions,
                      WeightsLike)
+
+if TYPE_CHECKING:  # pragma: no cover
+    import meshio
+
+    from ._meshio import FilledMesh
 
 ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of tuples, ...
 FaceLike = Union[ArrayLike, Sequence[Sequence[int]]]
@@ -147,14 +155,52 @@ class Client:
         self._closed = False
         self._stub = pb_grpc.TriangulatorStub(self._channel)
         self._health = health_pb2_grpc.HealthStub(self._channel)
+        #: The :class:`LocalServer` this client owns (:meth:`local`), else
+        #: None.
+        self.server: Optional[LocalServer] = None
+
+    @classmethod
+    def local(cls, executable: Optional[str] = None, *,
+              timeout: Optional[float] = None, transport: str = "unix",
+              threads: int = 0, log_level: str = "warn",
+              args: Sequence[str] = (), wait_s: float = 30.0) -> "Client":
+        """A client of its own private dot-server: starts a
+        :class:`LocalServer` (``executable``, ``transport``, ``threads``,
+        ``log_level``, ``args`` and ``wait_s`` are its arguments; by
+        default ``$DOT_SERVER_PATH`` or ``dot-server`` on PATH, on a Unix
+        socket only this user can reach) and connects to it; :meth:`close`
+        (or leaving ``with``) stops it, and it never outlives this
+        process, however the process ends::
+
+            with dot_client.Client.local() as client:
+                filled = client.fill_holes(vertices, faces)
+
+        ``timeout`` is the client's default deadline, as in the
+        constructor. The server is ``client.server`` (its ``address``,
+        ``pid``, ``log()``). Raises :class:`DotError` (``UNAVAILABLE``)
+        when no server could be started, leaving nothing running.
+        """
+        server = LocalServer(executable, transport=transport,
+                             threads=threads, log_level=log_level, args=args,
+                             wait_s=wait_s)
+        try:
+            client = cls(server.address, timeout=timeout)
+        except BaseException:
+            server.stop()
+            raise
+        client.server = server
+        return client
 
     # -- lifetime -----------------------------------------------------------
 
     def close(self) -> None:
         """Closes the channel; calls in flight are cancelled. Calls made
-        afterwards raise DotError (``FAILED_PRECONDITION``)."""
+        afterwards raise DotError (``FAILED_PRECONDITION``). A client made
+        by :meth:`local` stops its server too."""
         self._closed = True
         self._channel.close()
+        if self.server is not None:
+            self.server.stop()
 
     def _check_open(self) -> None:
         if self._closed:
@@ -168,6 +214,8 @@ class Client:
         self.close()
 
     def __repr__(self) -> str:
+        if self.server is not None:
+            return f"dot_client.Client.local() at {self.address!r}"
         return f"dot_client.Client({self.address!r})"
 
     # -- helpers ------------------------------------------------------------
@@ -512,7 +560,15 @@ class Client:
 
     # -- FillHoles ----------------------------------------------------------
 
-    def fill_holes(self, vertices: ArrayLike, faces: FaceLike, *,
+    @overload
+    def fill_holes(self, vertices: "meshio.Mesh", faces: None = None,
+                   **kwargs: Any) -> "FilledMesh": ...
+
+    @overload
+    def fill_holes(self, vertices: ArrayLike, faces: FaceLike,
+                   **kwargs: Any) -> FillResult: ...
+
+    def fill_holes(self, vertices: Any, faces: Optional[FaceLike] = None, *,
                    options: Optional[FillOptions] = None,
                    stage: Optional[str] = None,
                    max_hole_edges: Optional[int] = None,
@@ -542,7 +598,8 @@ class Client:
                    progress: Optional[Callable[[FillProgress], None]] = None,
                    request_id: str = "",
                    timeout: Optional[float] = _DEFAULT,
-                   cancel: Optional[CancelToken] = None) -> FillResult:
+                   cancel: Optional[CancelToken] = None
+                   ) -> Union[FillResult, "FilledMesh"]:
         """Fills the holes of a mesh (the FillHoles stream); the whole
         filled mesh comes back. (:meth:`fill_patches` brings back only
         what is new.)
@@ -552,6 +609,18 @@ class Client:
         triangulates them). The mesh streams to the server lazily in
         MeshChunk slices of about 1 MiB, so any size up to the server's
         limits fits.
+
+        Or ``vertices`` is a :class:`meshio.Mesh` (``meshio.read(path)``),
+        given alone (no ``faces``, ``point_data`` or ``corner_data``: they
+        come from the mesh): its ``triangle``, ``quad`` and ``polygon``
+        cells are the surface, and a :class:`FilledMesh` (a meshio.Mesh
+        with the :class:`FillReport` as ``report``) comes back: the mesh
+        as it was (the server's repair finds and fills the holes but is
+        not applied to it), with the new points and triangles added, point
+        data interpolated into the new points and cell data given to the
+        new cells as ``dot_client.FilledMesh`` documents (what is not
+        carried is named in ``report.notes``).
+        ``keep_polygons`` has no effect there (cells are always kept).
 
         ``options``: a :class:`FillOptions` (None: its defaults, which are
         the service's). The keyword arguments, when given (not None),
@@ -602,11 +671,12 @@ class Client:
         estimate of the time left; an exception it raises cancels the call
         and propagates.
 
-        Returns a :class:`FillResult` (vertices, faces, report); holes that
-        stay open are reported in ``report.holes``, not raised. A fill that
-        stops early (``time_budget_ms`` or the server's limit passes, the
-        server drains) raises :class:`FillStopped`, whose ``result`` holds
-        every hole finished before the stop.
+        Returns a :class:`FillResult` (vertices, faces, report), or a
+        :class:`FilledMesh` for a meshio.Mesh; holes that stay open are
+        reported in ``report.holes``, not raised. A fill that stops early
+        (``time_budget_ms`` or the server's limit passes, the server
+        drains) raises :class:`FillStopped`, whose ``result`` holds every
+        hole finished before the stop (a FilledMesh for a meshio.Mesh).
         """
         o = FillOptions.merged(
             options, stage=stage, max_hole_edges=max_hole_edges,
@@ -622,11 +692,43 @@ class Client:
             memory_budget_bytes=memory_budget_bytes,
             keep_polygons=keep_polygons,
             allow_input_intersections=allow_input_intersections)
+        if _is_meshio(vertices):
+            if faces is not None or point_data is not None or \
+                    corner_data is not None:
+                raise InvalidInput(
+                    "give a meshio.Mesh alone: its cells are the faces and "
+                    "its point_data the attributes (faces, point_data and "
+                    "corner_data are for arrays)")
+            return self._fill_meshio(vertices, o, progress, request_id,
+                                     timeout, cancel)
+        if faces is None:
+            raise InvalidInput("faces is missing: give (vertices, faces) "
+                               "arrays, or a meshio.Mesh alone")
         result: FillResult = self._fill(vertices, faces, o, "mesh", progress,
                                         request_id, timeout, cancel,
                                         point_data=point_data,
                                         corner_data=corner_data)
         return result
+
+    def _fill_meshio(self, mesh: Any, options: FillOptions,
+                     progress: Optional[Callable[[FillProgress], None]],
+                     request_id: str, timeout: Any,
+                     cancel: Optional[CancelToken]) -> "FilledMesh":
+        """fill_holes of a meshio.Mesh: its patches, added to it."""
+        from . import _meshio
+
+        request = _meshio.mesh_request(mesh)
+        try:
+            patches: FillPatches = self._fill(
+                request.vertices, request.faces, options, "patches",
+                progress, request_id, timeout, cancel,
+                point_data=request.point_data)
+        except FillStopped as stop:
+            if not isinstance(stop.result, FillPatches):
+                raise
+            partial = _meshio.filled_mesh(mesh, request, stop.result)
+            raise FillStopped(stop.code, stop.message, partial) from None
+        return _meshio.filled_mesh(mesh, request, patches)
 
     def fill_patches(self, vertices: ArrayLike, faces: FaceLike, *,
                      options: Optional[FillOptions] = None,
@@ -658,8 +760,8 @@ class Client:
                                           corner_data=corner_data)
         return patches
 
-    def list_holes(self, vertices: ArrayLike, faces: FaceLike, *,
-                   options: Optional[FillOptions] = None,
+    def list_holes(self, vertices: Any, faces: Optional[FaceLike] = None,
+                   *, options: Optional[FillOptions] = None,
                    request_id: str = "",
                    timeout: Optional[float] = _DEFAULT,
                    cancel: Optional[CancelToken] = None,
@@ -668,8 +770,21 @@ class Client:
         a :class:`FillReport` with one :class:`HoleReport` per loop, its
         size and place, ``"listed"`` when the selection in ``options`` (and
         the keyword ``changes`` to it, as :meth:`fill_patches` takes them)
-        would fill it, else ``"skipped"`` with the reason."""
+        would fill it, else ``"skipped"`` with the reason. The mesh is
+        ``vertices`` and ``faces`` arrays or a :class:`meshio.Mesh` alone,
+        as for :meth:`fill_holes`."""
         o = FillOptions.merged(options, **changes)
+        if _is_meshio(vertices):
+            if faces is not None:
+                raise InvalidInput("give a meshio.Mesh alone: its cells are "
+                                   "the faces")
+            from . import _meshio
+
+            request = _meshio.mesh_request(vertices, with_data=False)
+            vertices, faces = request.vertices, request.faces
+        elif faces is None:
+            raise InvalidInput("faces is missing: give (vertices, faces) "
+                               "arrays, or a meshio.Mesh alone")
         patches: FillPatches = self._fill(vertices, faces, o, "patches", None,
                                           request_id, timeout, cancel,
                                           dry_run=True)
@@ -838,6 +953,13 @@ class Client:
         except grpc.RpcError as e:
             raise from_rpc_error(e) from None
         return ServerInfo.from_proto(r)
+
+
+def _is_meshio(value: Any) -> bool:
+    """Whether ``value`` is a meshio.Mesh (without importing meshio: a
+    caller holding one has imported it)."""
+    meshio = sys.modules.get("meshio")
+    return meshio is not None and isinstance(value, meshio.Mesh)
 
 
 def _status_code(value: int) -> grpc.StatusCode:
