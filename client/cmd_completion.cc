@@ -86,11 +86,12 @@ std::string BashScript(const CLI::App& app) {
            return globals;
          }() +
          "\"\n"
+         "  # One candidate a line: file names may hold spaces.\n"
          "  if [[ $cur == -* ]]; then\n"
-         "    COMPREPLY=($(compgen -W \"$words\" -- \"$cur\"))\n"
+         "    mapfile -t COMPREPLY < <(compgen -W \"$words\" -- \"$cur\")\n"
          "  else\n"
-         "    COMPREPLY=($(compgen -W \"$words\" -- \"$cur\") "
-         "$(compgen -f -- \"$cur\"))\n"
+         "    mapfile -t COMPREPLY < <(compgen -W \"$words\" -- \"$cur\"; "
+         "compgen -f -- \"$cur\")\n"
          "  fi\n"
          "}\n"
          "complete -o filenames -F _dotctl dotctl\n";

@@ -47,7 +47,7 @@ void Report(Context* ctx, bool json, const std::string& input,
   }
   if (!s.ok()) {
     PrintError(s.message);
-  } else if (!ctx->quiet) {
+  } else if (!ctx->quiet && !summary.empty()) {
     os << summary << std::endl;
   }
 }
@@ -58,8 +58,10 @@ void WritePolygonOut(const PolygonData& polygon, const std::string& input,
   const Status s = out == "-" ? WritePolygonText(std::cout, polygon)
                               : WritePolygonText(out, polygon);
   const size_t n = polygon.vertices.size();
+  // Nothing on stderr beside a polygon on stdout (as before: scripts pipe
+  // both).
   Report(ctx, json, input, out, s, kExitFailed,
-         std::to_string(n) + " vertices -> " + out,
+         out == "-" ? "" : std::to_string(n) + " vertices -> " + out,
          {{"vertices", std::to_string(n)}});
 }
 
@@ -278,6 +280,10 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
     } else {
       MeshData mesh;
       s = ReadMeshFile(nf->source, &mesh);
+      if (!s.ok()) {  // unreadable input
+        Report(ctx, nf->json, nf->source, nf->out, s, kExitUsage, "", {});
+        return;
+      }
       CutNetwork cut;
       if (s.ok()) {
         s = CutIntoPatches(mesh, nf->patches, nf->keep_every, nf->seed, &cut);

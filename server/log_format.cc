@@ -32,9 +32,13 @@ class JsonMessage : public spdlog::custom_flag_formatter {
           out += "\\t";
           break;
         default:
-          if (static_cast<unsigned char>(c) < 0x20) {
+          // Control characters, and every byte past ASCII (a message may
+          // hold a path that is not UTF-8): always valid JSON.
+          if (static_cast<unsigned char>(c) < 0x20 ||
+              static_cast<unsigned char>(c) >= 0x80) {
             char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
+            std::snprintf(buf, sizeof buf, "\\u%04x",
+                          static_cast<unsigned char>(c));
             out += buf;
           } else {
             out += c;

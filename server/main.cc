@@ -35,18 +35,18 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  dot::server::SetLogFormat(config.log_format == "json");
+  if (config.log_format != "text" && config.log_format != "json") {
+    spdlog::error("unknown --log-format '{}' (text or json)",
+                  config.log_format);
+    return 2;
+  }
   const auto level = spdlog::level::from_str(config.log_level);
   if (level == spdlog::level::off && config.log_level != "off") {
     spdlog::error("unknown --log-level '{}'", config.log_level);
     return 2;
   }
   spdlog::set_level(level);
-  if (config.log_format != "text" && config.log_format != "json") {
-    spdlog::error("unknown --log-format '{}' (text or json)",
-                  config.log_format);
-    return 2;
-  }
-  dot::server::SetLogFormat(config.log_format == "json");
 
   // By default glibc maps large blocks fresh for every request and hands
   // freed compute-thread heaps back to the kernel, so each solve page-faults

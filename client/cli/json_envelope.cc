@@ -44,8 +44,10 @@ std::string ProtoJson(const google::protobuf::Message& message) {
   options.always_print_primitive_fields = true;
   options.preserve_proto_field_names = true;
   std::string json;
-  (void)google::protobuf::util::MessageToJsonString(message, &json, options);
-  return json;
+  return google::protobuf::util::MessageToJsonString(message, &json, options)
+                 .ok()
+             ? json
+             : "null";
 }
 
 std::string JsonEnvelope::ToJson() const {

@@ -261,17 +261,20 @@ bool MoreSurfaceable(const FaceCount& a, const FaceCount& b) {
   return a.faces >= b.faces && a.simple + a.seams > b.simple + b.seams;
 }
 
-// The face that leaves along dart `start`, each dart marked in `seen`.
+// The face that leaves along dart `start`, each dart marked in `seen`;
+// false when the ticker says stop (polled per dart: faces can be long).
 template <typename Seen>
-void TraceFace(const Rotation& rot, int32_t start, Seen* seen,
-               std::vector<CurveUse>* face) {
+bool TraceFace(const Rotation& rot, int32_t start, Seen* seen,
+               std::vector<CurveUse>* face, RunTicker* ticker) {
   face->clear();
   int32_t d = start;
   do {
+    if (ticker != nullptr && !ticker->Tick()) return false;
     (*seen)[d] = 1;
     face->push_back({d / 2, (d & 1) == 1});
     d = rot.Next(d);
   } while (d != start);
+  return true;
 }
 
 // Faces through the darts arriving at a junction: how many are
@@ -284,8 +287,7 @@ FaceCount FacesAt(const Rotation& rot, const std::vector<int32_t>& ring,
   for (int32_t a : ring) {
     const int32_t start = a ^ 1;  // leaves the other end, arrives here
     if (seen.count(start)) continue;
-    TraceFace(rot, start, &seen, &face);
-    if (!ticker->Tick()) {
+    if (!TraceFace(rot, start, &seen, &face, ticker)) {
       *stop = true;
       return {};
     }
@@ -302,7 +304,7 @@ FaceCount AllFaces(const Rotation& rot) {
   for (const auto& ring : rot.rings) {
     for (int32_t start : ring) {
       if (seen[start]) continue;
-      TraceFace(rot, start, &seen, &face);
+      TraceFace(rot, start, &seen, &face, nullptr);
       count.Add(face);
     }
   }

@@ -64,6 +64,14 @@ Status Weld(const CurveNetwork& net, NetworkGraph* g) {
       return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
                              " has a coordinate that is not a finite number");
     }
+    // Lengths, normals and fairing square coordinates: beyond 1e100 they
+    // could overflow (found by network_fuzz).
+    const Vec3& v = net.vertices[i];
+    if (std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}) > 1e100) {
+      return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
+                             " has a coordinate beyond 1e100 in magnitude: "
+                             "scale the network down");
+    }
   }
   for (size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;

@@ -149,8 +149,8 @@ bool SplitSeam(const NetworkGraph& g, const std::vector<CurveUse>& loop,
   const double mean_edge =
       (len_a.back() + len_b.back() + 2 * ArcLengths(g, seam).back()) /
       static_cast<double>(walk_a.size() + walk_b.size() + 2 * seam.size() - 4);
-  const double steps =
-      mean_edge > 0 ? std::round(Distance(p, q) / mean_edge) : 1;
+  double steps = mean_edge > 0 ? std::round(Distance(p, q) / mean_edge) : 1;
+  if (!std::isfinite(steps)) steps = 2;
   const auto points = static_cast<int32_t>(std::clamp(
       steps - 1, 1.0, static_cast<double>(walk_a.size() + walk_b.size())));
   const auto first_new = static_cast<int32_t>(g.vertices.size());

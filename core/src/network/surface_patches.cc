@@ -257,13 +257,20 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
       // most 4/3 of the target, so none is split) instead.
       const double target = 0.75 * longest * (1 + 1e-9);
       const double estimate = area / (0.433 * target * target);
-      if (target <= 0 || estimate > static_cast<double>(cap)) {
+      // At most 100,000 new vertices: about a second per iteration.
+      if (target <= 0 || estimate > std::min(static_cast<double>(cap), 1e5)) {
         throw StopRefining{OkStatus()};
       }
-      PMP::isotropic_remeshing(
-          faces, target, sm,
-          CGAL::parameters::number_of_iterations(3).protect_constraints(true));
-      if (!ticker.Poll()) return ticker.status();
+      // One iteration at a time, polled between (CGAL's remesher has no
+      // stop of its own).
+      for (int iteration = 0; iteration < 3; ++iteration) {
+        PMP::isotropic_remeshing(
+            faces, target, sm,
+            CGAL::parameters::number_of_iterations(1).protect_constraints(
+                true));
+        if (!ticker.Poll()) return ticker.status();
+        faces.assign(sm.faces().begin(), sm.faces().end());
+      }
       for (VertexIndex v : sm.vertices()) {
         if (original[v] < 0) new_vertices.push_back(v);
       }
