@@ -90,9 +90,10 @@ struct NetworkGraph {
 };
 
 // kInvalidArgument names what is not a network: an id out of range, a
-// non-finite coordinate or one beyond 1e100 in magnitude, a polyline of fewer than 2 points, an edge from a
-// point to itself, two polylines along one edge (duplicate curves), or two
-// curves that cross or touch away from a shared vertex (exact predicates).
+// non-finite coordinate or one beyond 1e100 in magnitude, a polyline of fewer
+// than 2 points, an edge from a point to itself, two polylines along one edge
+// (duplicate curves), or two curves that cross or touch away from a shared
+// vertex (exact predicates).
 Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
                          const Control& control = {});
 
