@@ -4,9 +4,11 @@
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/spdlog.h>
 
-#include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
+
+#include "wire/json_text.h"
 
 namespace dot::server {
 namespace {
@@ -16,35 +18,11 @@ class JsonMessage : public spdlog::custom_flag_formatter {
  public:
   void format(const spdlog::details::log_msg& msg, const std::tm&,
               spdlog::memory_buf_t& dest) override {
-    std::string out;
-    for (const char c : msg.payload) {
-      switch (c) {
-        case '"':
-          out += "\\\"";
-          break;
-        case '\\':
-          out += "\\\\";
-          break;
-        case '\n':
-          out += "\\n";
-          break;
-        case '\t':
-          out += "\\t";
-          break;
-        default:
-          // Control characters, and every byte past ASCII (a message may
-          // hold a path that is not UTF-8): always valid JSON.
-          if (static_cast<unsigned char>(c) < 0x20 ||
-              static_cast<unsigned char>(c) >= 0x80) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x",
-                          static_cast<unsigned char>(c));
-            out += buf;
-          } else {
-            out += c;
-          }
-      }
-    }
+    // Every byte past ASCII escaped too: a message may hold a path that is
+    // not UTF-8, and the line must stay valid JSON.
+    const std::string out = wire::JsonEscape(
+        std::string_view(msg.payload.data(), msg.payload.size()),
+        /*ascii_only=*/true);
     dest.append(out.data(), out.data() + out.size());
   }
   std::unique_ptr<custom_flag_formatter> clone() const override {

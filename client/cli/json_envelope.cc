@@ -3,40 +3,15 @@
 
 #include <google/protobuf/util/json_util.h>
 
-#include <cstdio>
 #include <sstream>
 
+#include "wire/json_text.h"
 #include "wire/wire.h"
 
 namespace dot::client {
 
 std::string JsonQuote(const std::string& in) {
-  std::string out = "\"";
-  for (const char c : in) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
+  return "\"" + wire::JsonEscape(in) + "\"";
 }
 
 std::string ProtoJson(const google::protobuf::Message& message) {

@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The inside of a JSON string: quotes, backslashes and control characters
+// escaped; with `ascii_only`, every byte past ASCII too (\u00XX), so text
+// that may not be UTF-8 (a path in a log line) still makes valid JSON.
+// Shared by dotctl's --json envelope and the server's JSON log lines.
+#ifndef DOT_PROTO_WIRE_JSON_TEXT_H_
+#define DOT_PROTO_WIRE_JSON_TEXT_H_
+
+#include <string>
+#include <string_view>
+
+namespace dot::wire {
+
+std::string JsonEscape(std::string_view text, bool ascii_only = false);
+
+}  // namespace dot::wire
+
+#endif  // DOT_PROTO_WIRE_JSON_TEXT_H_
