@@ -27,9 +27,11 @@ extern char** environ;
 namespace dot {
 namespace {
 
-// Starts args[0] with `args`, stdin from `stdin_fd` when >= 0; its pid, or
-// -1 when it could not be started.
-pid_t Spawn(std::vector<std::string> args, int stdin_fd = -1) {
+// Starts args[0] with `args`, stdin from `stdin_fd` when >= 0, stdout and
+// stderr to the file `output` when given; its pid, or -1 when it could not
+// be started.
+pid_t Spawn(std::vector<std::string> args, int stdin_fd = -1,
+            const std::string& output = "") {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -37,6 +39,11 @@ pid_t Spawn(std::vector<std::string> args, int stdin_fd = -1) {
   posix_spawn_file_actions_init(&actions);
   if (stdin_fd >= 0) {
     posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
+  }
+  if (!output.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   }
   pid_t pid = -1;
   if (::posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(),
@@ -132,19 +139,8 @@ TEST(ServerProcessTest, LogFormatJsonIsOneObjectALine) {
                                      format,
                                      "--drain-seconds",
                                      "1"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    pid_t pid = -1;
-    ASSERT_EQ(::posix_spawn(&pid, args[0].c_str(), &actions, nullptr,
-                            argv.data(), environ),
-              0);
-    posix_spawn_file_actions_destroy(&actions);
+    const pid_t pid = Spawn(args, -1, log);
+    ASSERT_GT(pid, 0);
     auto channel =
         grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
     ASSERT_TRUE(channel->WaitForConnected(std::chrono::system_clock::now() +
