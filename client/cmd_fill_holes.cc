@@ -20,6 +20,7 @@
 #include "fill_call.h"
 #include "remote_call.h"
 #include "request_flags.h"
+#include "view_page.h"
 #include "wire/fill_wire.h"
 #include "wire/wire.h"
 
@@ -30,6 +31,7 @@ struct FillFlags {
   std::vector<std::string> inputs;  // as given: files, directories, -
   std::string input, output, stdin_format, output_format;  // input: one
   std::string stage = "fair";
+  std::string report_page;  // --report: a file, or a directory (several)
   uint32_t max_hole_edges = 0;
   double max_hole_diameter = 0;
   bool skip_longest = false;
@@ -201,46 +203,49 @@ void AddFlags(CLI::App* cmd, FillFlags* f) {
   cmd->add_option("--time-budget-ms", f->time_budget_ms,
                   "compute time allowed (0: the server's limit)");
   cmd->add_flag("--json", f->json, "the report as one JSON object on stdout");
+  cmd->add_option("--report", f->report_page,
+                  "also write a page to look at the result in a browser "
+                  "(REPORT.html; with several meshes a directory, NAME.html "
+                  "in it): the mesh before and after, patches highlighted, "
+                  "the holes listed");
   cmd->add_flag("--local", f->local, "fill in this process, no server");
 }
 
-// Reads the mesh; stdin goes through a temporary file, since CGAL's readers
-// detect binary PLY/STL from a file.
-Status ReadInput(const FillFlags& f, PolygonSoup* soup,
-                 std::vector<std::string>* notes) {
-  if (!IsStreamInput(f.input)) {
-    return ReadPolygonSoupFile(f.input, soup, notes);
+// Where --report's page for `input` goes: the file named, or NAME.html in
+// the directory named (several meshes).
+std::string ReportPagePath(const FillFlags& f) {
+  std::error_code ec;
+  const std::filesystem::path named(f.report_page);
+  if (f.report_page.back() != '/' &&
+      !std::filesystem::is_directory(named, ec)) {
+    return f.report_page;
   }
-  if (f.stdin_format.empty()) {
-    return InvalidArgument("reading a mesh from stdin needs --input-format");
-  }
-  char name[] = "/tmp/dotctl-stdin-XXXXXX";
-  const int fd = mkstemp(name);
-  if (fd < 0) return InvalidArgument("cannot make a temporary file");
-  close(fd);
-  const std::string path = std::string(name) + "." + f.stdin_format;
-  std::rename(name, path.c_str());
-  {
-    std::ofstream tmp(path, std::ios::binary);
-    if (f.input == "-") {
-      tmp << std::cin.rdbuf();
-    } else {
-      std::ifstream in(f.input, std::ios::binary);
-      tmp << in.rdbuf();
-    }
-  }
-  Status s = ReadPolygonSoupFile(path, soup, notes);
-  std::remove(path.c_str());
-  // Errors name what the user gave, not the temporary copy.
-  const std::string shown = f.input == "-" ? "stdin" : "'" + f.input + "'";
-  for (size_t at;
-       (at = s.message.find("'" + path + "'")) != std::string::npos;) {
-    s.message.replace(at, path.size() + 2, shown);
-  }
-  for (size_t at; (at = s.message.find(path)) != std::string::npos;) {
-    s.message.replace(at, path.size(), shown);
-  }
-  return s;
+  std::string stem = std::filesystem::path(f.input).stem().string();
+  if (IsStreamInput(f.input)) stem = "stdin";
+  return (named / (stem + ".html")).string();
+}
+
+// The viewer page of a fill, into `out`: "" or why it could not be written.
+std::string WriteReportPage(const FillFlags& f, const PolygonSoup& before,
+                            const FillOutcome& o, AtomicOutput* out) {
+  const PolygonSoup after = o.as_sent ? PolygonSoup() : ToSoup(o.mesh);
+  const v1::FillReport& r = o.report;
+  ViewPage page;
+  page.title = f.input == "-" ? "stdin" : f.input;
+  page.summary = std::to_string(r.filled()) + " of " +
+                 std::to_string(r.loops() - r.skipped()) + " holes filled" +
+                 (r.closed() ? ", closed" : ", still open") + "; +" +
+                 std::to_string(r.added_vertices()) + " vertices, +" +
+                 std::to_string(r.added_faces()) + " faces (stage " + f.stage +
+                 ")";
+  page.before = &before;
+  page.after = o.as_sent ? &o.soup : &after;
+  page.report = &r;
+  std::string html;
+  const Status s = RenderViewPage(page, &html);
+  if (!s.ok()) return s.message;
+  out->stream() << html;
+  return out->Commit();
 }
 
 // The note column: "pinched loop", "joins islands 3, 5" on a rim whose
@@ -392,8 +397,18 @@ void FillOne(const FillFlags& f, Context* ctx,
   if (f.dry_run && !f.output.empty()) {
     output_error = "--dry-run writes no mesh: leave out -o " + f.output;
   }
+  if (f.dry_run && !f.report_page.empty()) {
+    output_error = "--dry-run fills nothing to show: use dotctl view " +
+                   f.input + " to see its holes";
+  }
   if (output_error.empty() && !f.dry_run) {
     output_error = sink.Open(target.Name());
+  }
+  AtomicOutput page_sink;
+  const std::string page_path = f.report_page.empty() ? "" : ReportPagePath(f);
+  if (output_error.empty() && !page_path.empty()) {
+    output_error = page_sink.Open(page_path);
+    if (!output_error.empty()) output_error = "--report: " + output_error;
   }
   if (!output_error.empty()) {
     report(kOutcomeOutputError, kExitUsage, output_error, false);
@@ -415,12 +430,16 @@ void FillOne(const FillFlags& f, Context* ctx,
   clock.Start("read");
   PolygonSoup soup;
   std::vector<std::string> read_notes;
-  const Status read = ReadInput(f, &soup, &read_notes);
+  const Status read =
+      ReadMeshInput(f.input, f.stdin_format, &soup, &read_notes);
   phase("");
   if (!read.ok()) {
     report(kOutcomeInputError, kExitUsage, read.message, false);
     return;
   }
+  // --report shows the mesh as read beside the result.
+  PolygonSoup before;
+  if (!f.report_page.empty() && !f.dry_run) before = soup;
   if (f.local) {
     o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
   } else {
@@ -468,6 +487,16 @@ void FillOne(const FillFlags& f, Context* ctx,
     return;
   }
   written = target.Name();
+  if (!page_path.empty()) {
+    phase("  writing the report page");
+    const std::string page_error = WriteReportPage(f, before, o, &page_sink);
+    phase("");
+    if (!page_error.empty()) {
+      report(kOutcomeWriteFailed, kExitFailed, "--report: " + page_error, true);
+      return;
+    }
+    o.page = page_path;
+  }
   const v1::FillReport& r = o.report;
   const std::string stopped =
       o.partial ? std::string(wire::GrpcCodeName(o.status.error_code())) +
@@ -495,6 +524,7 @@ void FillOne(const FillFlags& f, Context* ctx,
        << r.added_vertices() << " vertices, +" << r.added_faces() << " faces, "
        << static_cast<int64_t>(o.latency_ms + 0.5) << " ms -> " << written
        << std::endl;
+  if (!o.page.empty()) text << "  report page: " << o.page << "\n";
   if (o.partial) {
     text << "  stopped early: " << stopped << "\n";
   }
@@ -524,13 +554,18 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
     } else if (inputs.size() > 1 && !out.empty() && out.back() != '/' &&
                !std::filesystem::is_directory(out)) {
       why = "several meshes need a directory for -o (end it with '/')";
+    } else if (inputs.size() > 1 && !flags->report_page.empty() &&
+               flags->report_page.back() != '/' &&
+               !std::filesystem::is_directory(flags->report_page)) {
+      why = "several meshes need a directory for --report (end it with '/')";
     } else if (inputs.size() > 1 && flags->dry_run && !out.empty()) {
       why = "--dry-run writes no mesh: leave out -o " + out;
     }
-    if (why.empty() && inputs.size() > 1 && !out.empty()) {
+    for (const std::string& dir : {out, flags->report_page}) {
+      if (!why.empty() || inputs.size() < 2 || dir.empty()) continue;
       std::error_code ec;
-      std::filesystem::create_directories(out, ec);
-      if (ec) why = "cannot create directory '" + out + "': " + ec.message();
+      std::filesystem::create_directories(dir, ec);
+      if (ec) why = "cannot create directory '" + dir + "': " + ec.message();
     }
     if (!why.empty()) {
       if (flags->json) {

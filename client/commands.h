@@ -22,6 +22,7 @@ void AddLoadCommand(CLI::App& app, Context* ctx);
 void AddGenerateCommand(CLI::App& app, Context* ctx);
 void AddFillHolesCommand(CLI::App& app, Context* ctx);
 void AddSurfaceCommand(CLI::App& app, Context* ctx);
+void AddViewCommand(CLI::App& app, Context* ctx);
 // bash or zsh completion, from the definition of `app` (call it last).
 void AddCompletionCommand(CLI::App& app, Context* ctx);
 

@@ -253,7 +253,9 @@ std::string FillOutcomeJson(const std::string& input, const FillOutcome& o,
   const bool answered = called && (o.status.ok() || o.partial);
   if (answered) e.notes = FillNotes(o.report);
   e.notes.insert(e.notes.end(), o.notes.begin(), o.notes.end());
-  e.fields = {{"report", answered ? ProtoJson(o.report) : std::string("null")}};
+  e.fields = {
+      {"report", answered ? ProtoJson(o.report) : std::string("null")},
+      {"page", o.page.empty() ? std::string("null") : JsonQuote(o.page)}};
   return e.ToJson();
 }
 

@@ -32,6 +32,7 @@ struct FillOutcome {
   // the text output and the JSON's "notes", after FillNotes'.
   std::vector<std::string> notes;
   double latency_ms = 0;
+  std::string page;  // the viewer page written (fill-holes --report), or ""
 };
 
 // What a user should know about a fill besides its counts, one line each:

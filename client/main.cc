@@ -107,6 +107,7 @@ int main(int argc, char** argv) {
   dot::client::AddGenerateCommand(app, &ctx);
   dot::client::AddFillHolesCommand(app, &ctx);
   dot::client::AddSurfaceCommand(app, &ctx);
+  dot::client::AddViewCommand(app, &ctx);
   dot::client::AddCompletionCommand(app, &ctx);
   try {
     app.parse(argc, argv);

@@ -2,10 +2,13 @@
 #include "cli/inputs.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -83,6 +86,43 @@ Status ReadPolygonInput(const std::string& input, const std::string& format,
   }
   s = obj ? ReadPolygonObj(in, out, notes) : ReadPolygonText(in, out, notes);
   if (!s.ok()) s.message = input + ": " + s.message;
+  return s;
+}
+
+Status ReadMeshInput(const std::string& input, const std::string& format,
+                     PolygonSoup* soup, std::vector<std::string>* notes) {
+  if (!IsStreamInput(input)) {
+    return ReadPolygonSoupFile(input, soup, notes);
+  }
+  if (format.empty()) {
+    return InvalidArgument("reading a mesh from stdin needs --input-format");
+  }
+  char name[] = "/tmp/dotctl-stdin-XXXXXX";
+  const int fd = mkstemp(name);
+  if (fd < 0) return InvalidArgument("cannot make a temporary file");
+  close(fd);
+  const std::string path = std::string(name) + "." + format;
+  std::rename(name, path.c_str());
+  {
+    std::ofstream tmp(path, std::ios::binary);
+    if (input == "-") {
+      tmp << std::cin.rdbuf();
+    } else {
+      std::ifstream in(input, std::ios::binary);
+      tmp << in.rdbuf();
+    }
+  }
+  Status s = ReadPolygonSoupFile(path, soup, notes);
+  std::remove(path.c_str());
+  // Errors name what the user gave, not the temporary copy.
+  const std::string shown = input == "-" ? "stdin" : "'" + input + "'";
+  for (size_t at;
+       (at = s.message.find("'" + path + "'")) != std::string::npos;) {
+    s.message.replace(at, path.size() + 2, shown);
+  }
+  for (size_t at; (at = s.message.find(path)) != std::string::npos;) {
+    s.message.replace(at, path.size(), shown);
+  }
   return s;
 }
 

@@ -29,6 +29,13 @@ bool IsStreamInput(const std::string& input);
 Status ReadPolygonInput(const std::string& input, const std::string& format,
                         PolygonData* out, std::vector<std::string>* notes);
 
+// Reads one mesh (polygons and attribute channels): a file by its
+// extension, or "-" and other streams in `format` (off, obj, ply, stl; an
+// error without it) through a temporary file, since CGAL's readers detect
+// binary PLY and STL from a file. Errors name `input`, never the copy.
+Status ReadMeshInput(const std::string& input, const std::string& format,
+                     PolygonSoup* soup, std::vector<std::string>* notes);
+
 }  // namespace dot::client
 
 #endif  // DOT_CLIENT_CLI_INPUTS_H_
