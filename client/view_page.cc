@@ -136,14 +136,16 @@ std::string MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
            << ",\"hole\":" << tris[i].owner << "}";
     i = j;
   }
-  std::vector<uint32_t> open;  // edges of one face: a hole's rim, a border
+  std::vector<uint64_t> rims;  // edges of one face: a hole's rim, a border
   for (const auto& [key, count] : uses) {
-    if (count == 1) {
-      open.push_back(static_cast<uint32_t>(key >> 32));
-      open.push_back(static_cast<uint32_t>(key));
-    }
+    if (count == 1) rims.push_back(key);
   }
-  std::sort(open.begin(), open.end());  // deterministic pages
+  std::sort(rims.begin(), rims.end());  // deterministic pages
+  std::vector<uint32_t> open;
+  for (uint64_t key : rims) {
+    open.push_back(static_cast<uint32_t>(key >> 32));
+    open.push_back(static_cast<uint32_t>(key));
+  }
   auto b64 = [](const auto& v) {
     return "\"" +
            absl::Base64Escape(

@@ -15,7 +15,14 @@ packages=(
   python3-protobuf python3-numpy python3-pytest  # dot_client and its tests
   python3-meshio  # dot_client's mesh files (optional for it; its tests use it)
   blender  # the Blender add-on's headless tests (3.4, on the system Python)
+  chromium  # the viewer pages' headless browser test
 )
+# The viewer's script is bundled from the npm registry at build time: npm
+# and Node.js from Debian unless the machine has them already (another
+# nodejs package may provide both).
+if ! command -v npm >/dev/null || ! command -v node >/dev/null; then
+  packages+=(nodejs npm)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||

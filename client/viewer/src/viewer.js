@@ -62,6 +62,23 @@ function buildMesh(m) {
   return {group, surface, wire, groups, patches, geometry};
 }
 
+// The side the surface around `at` faces: the area-weighted normal of the
+// faces within `size` of it (a hole's rim, to look into the hole from).
+function surfaceNormal(mesh, at, size) {
+  const pos = mesh.geometry.getAttribute('position'), index = mesh.geometry.index.array;
+  const a = new THREE.Vector3(), b = new THREE.Vector3(), c = new THREE.Vector3();
+  const n = new THREE.Vector3(), sum = new THREE.Vector3();
+  const r2 = size * size;
+  for (let t = 0; t < index.length; t += 3) {
+    a.fromBufferAttribute(pos, index[t]);
+    if (a.distanceToSquared(at) > r2) continue;
+    b.fromBufferAttribute(pos, index[t + 1]);
+    c.fromBufferAttribute(pos, index[t + 2]);
+    sum.add(n.crossVectors(b.sub(a), c.sub(a)));
+  }
+  return sum.lengthSq() > 0 ? sum : null;
+}
+
 // Where to look at a patch from: its area-weighted centre and normal (the
 // side its faces face, so the camera sees the patch, not the far side).
 function patchFrame(geometry, start, count) {
@@ -225,13 +242,15 @@ function main() {
     const owner = hole.joined_to !== undefined ? hole.joined_to : id;
     for (const [hid, g] of after.groups) g.materialIndex = hid === owner ? 2 : 1;
     selected = id;
-    // A filled hole: its patch, seen from the side it faces; an open one:
-    // its loop's centroid, from where the camera looks now.
-    const frame = after.patches.get(hole.joined_to !== undefined ? hole.joined_to : id);
+    // A filled hole: its patch, seen from the side it faces; an open one
+    // (or the mesh before): its loop's centroid, seen from outside the mesh.
+    const frame = showingBefore ? null : after.patches.get(owner);
     const c = hole.centroid || [0, 0, 0];
     const target = frame ? frame.center
                          : new THREE.Vector3(c[0] - center[0], c[1] - center[1], c[2] - center[2]);
-    flyTo(target, Math.max(hole.diameter * 2.2, radius * 0.05), frame ? frame.normal : null);
+    flyTo(target, Math.max(hole.diameter * 2.2, radius * 0.05),
+          frame ? frame.normal : surfaceNormal(showingBefore ? before : after, target,
+                                               hole.diameter));
     return true;
   }
   for (const h of holes) {
