@@ -234,6 +234,8 @@ std::string WriteReportPage(const FillFlags& f, const PolygonSoup& before,
   page.title = f.input == "-" ? "stdin" : f.input;
   page.summary = std::to_string(r.filled()) + " of " +
                  std::to_string(r.loops() - r.skipped()) + " holes filled" +
+                 (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
+                              : "") +
                  (r.closed() ? ", closed" : ", still open") + "; +" +
                  std::to_string(r.added_vertices()) + " vertices, +" +
                  std::to_string(r.added_faces()) + " faces (stage " + f.stage +

@@ -142,7 +142,7 @@ async function settle(page) {
 
     if (screenshot) {
       await page.keyboard.press('b');
-      await page.evaluate((h) => window.dotViewer.select(h), filled[filled.length - 1]);
+      await page.evaluate((h) => window.dotViewer.select(h), filled[0]);
       await settle(page);
       await page.screenshot({path: screenshot});
       console.log(`screenshot: ${screenshot}`);

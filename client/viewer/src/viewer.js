@@ -248,7 +248,7 @@ function main() {
     const c = hole.centroid || [0, 0, 0];
     const target = frame ? frame.center
                          : new THREE.Vector3(c[0] - center[0], c[1] - center[1], c[2] - center[2]);
-    flyTo(target, Math.max(hole.diameter * 2.2, radius * 0.05),
+    flyTo(target, Math.max(hole.diameter * 3.2, radius * 0.3),
           frame ? frame.normal : surfaceNormal(showingBefore ? before : after, target,
                                                hole.diameter));
     return true;
