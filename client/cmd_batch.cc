@@ -152,7 +152,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       pending[f].input = std::move(polygon.vertices);
     }
     if (requests.empty()) return;
-    auto channel = ChannelOrReport(ctx);
+    auto channel = ChannelOrReport(ctx, flags->json);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;

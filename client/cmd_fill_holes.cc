@@ -232,14 +232,13 @@ std::string WriteReportPage(const FillFlags& f, const PolygonSoup& before,
   const v1::FillReport& r = o.report;
   ViewPage page;
   page.title = f.input == "-" ? "stdin" : f.input;
-  page.summary = std::to_string(r.filled()) + " of " +
-                 std::to_string(r.loops() - r.skipped()) + " holes filled" +
-                 (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)"
-                              : "") +
-                 (r.closed() ? ", closed" : ", still open") + "; +" +
-                 std::to_string(r.added_vertices()) + " vertices, +" +
-                 std::to_string(r.added_faces()) + " faces (stage " + f.stage +
-                 ")";
+  page.summary =
+      std::to_string(r.filled()) + " of " +
+      std::to_string(r.loops() - r.skipped()) + " holes filled" +
+      (r.skipped() ? " (" + std::to_string(r.skipped()) + " skipped)" : "") +
+      (r.closed() ? ", closed" : ", still open") + "; +" +
+      std::to_string(r.added_vertices()) + " vertices, +" +
+      std::to_string(r.added_faces()) + " faces (stage " + f.stage + ")";
   page.before = &before;
   page.after = o.as_sent ? &o.soup : &after;
   page.report = &r;
@@ -445,7 +444,7 @@ void FillOne(const FillFlags& f, Context* ctx,
   if (f.local) {
     o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
   } else {
-    if (!*channel) *channel = ChannelOrReport(ctx);
+    if (!*channel) *channel = ChannelOrReport(ctx, f.json);
     if (!*channel) return;
     auto stub = v1::Triangulator::NewStub(*channel);
     phase("  uploading " + std::to_string(soup.faces.size()) + " faces");

@@ -62,8 +62,9 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
   CLI::App* cmd = app.add_subcommand(
       "health",
       "Ask grpc.health.v1.Health/Check. Exit code 0 when SERVING, 1 when "
-      "not, 3 when the server cannot be reached: fit for container health "
-      "checks.");
+      "not (NOT_SERVING, SERVICE_UNKNOWN for a --service the server does "
+      "not know), 3 when the server cannot be reached: fit for container "
+      "health checks.");
   cmd->add_option("--service", *service,
                   "service to check ('' is the whole server, or "
                   "dot.v1.Triangulator)");
@@ -73,7 +74,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
   cmd->add_flag("--json", *json,
                 "one JSON object on stdout (the envelope, then \"status\")");
   cmd->callback([ctx, service, timeout, json] {
-    auto channel = ChannelOrReport(ctx);
+    auto channel = ChannelOrReport(ctx, *json);
     if (!channel) return;
     auto stub = grpc::health::v1::Health::NewStub(channel);
     grpc::ClientContext context;
@@ -84,15 +85,19 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     const grpc::Status s = stub->Check(&context, request, &response);
     PrintVerbose(*ctx, "Check answered in " + MsText(t0));
+    // Not reached, a service the server does not know (NOT_FOUND, as the
+    // health protocol answers), or another failure (no health service).
+    const bool unreachable =
+        s.error_code() == grpc::StatusCode::UNAVAILABLE ||
+        s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED;
     const std::string status =
         s.ok() ? grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
                      response.status())
-               : "UNREACHABLE";
+        : unreachable                                   ? "UNREACHABLE"
+        : s.error_code() == grpc::StatusCode::NOT_FOUND ? "SERVICE_UNKNOWN"
+                                                        : "ERROR";
     const int code =
-        !s.ok() ? (s.error_code() == grpc::StatusCode::UNAVAILABLE ||
-                           s.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
-                       ? kExitUnavailable
-                       : kExitFailed)
+        !s.ok() ? (unreachable ? kExitUnavailable : kExitFailed)
         : response.status() == grpc::health::v1::HealthCheckResponse::SERVING
             ? kExitOk
             : kExitFailed;
@@ -105,7 +110,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
       return;
     }
     if (!s.ok()) {
-      PrintError("UNREACHABLE (" +
+      PrintError(status + " (" +
                  std::string(wire::GrpcCodeName(s.error_code())) + ": " +
                  s.error_message() + ")");
       return;
@@ -122,7 +127,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
                  "one JSON object on stdout (the envelope, then "
                  "\"server_info\": the ServerInfo message)");
   info->callback([ctx, info_json] {
-    auto channel = ChannelOrReport(ctx);
+    auto channel = ChannelOrReport(ctx, *info_json);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;
@@ -188,7 +193,7 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
       }
       return;
     }
-    auto channel = ChannelOrReport(ctx);
+    auto channel = ChannelOrReport(ctx, *source_json);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     grpc::ClientContext context;

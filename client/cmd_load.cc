@@ -473,7 +473,7 @@ void RunLoad(LoadFlags& f, Context* ctx) {
     run.helpers = LocalDelaunayHelpers(f.concurrency);
   }
   for (int c = 0; c < f.channels && !f.local; ++c) {
-    auto channel = ChannelOrReport(ctx);
+    auto channel = ChannelOrReport(ctx, f.json);
     if (!channel) return;
     run.stubs.push_back(v1::Triangulator::NewStub(channel));
   }

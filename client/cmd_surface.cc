@@ -190,7 +190,7 @@ void SurfaceOne(const SurfaceFlags& f, Context* ctx) {
   if (f.local) {
     o = SurfaceLocal(flags.ToWire(), network, on_progress);
   } else {
-    const auto channel = ChannelOrReport(ctx);
+    const auto channel = ChannelOrReport(ctx, f.json);
     if (!channel) return;
     auto stub = v1::Triangulator::NewStub(channel);
     o = SurfaceRemote(*stub, f.input, flags.ToWire(), network,

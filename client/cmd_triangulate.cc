@@ -124,7 +124,7 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
     std::unique_ptr<v1::Triangulator::Stub> stub;
     std::unique_ptr<DelaunayHelperPool> helpers;
     if (!flags->local) {
-      channel = ChannelOrReport(ctx);
+      channel = ChannelOrReport(ctx, flags->json);
       if (!channel) return;
       stub = v1::Triangulator::NewStub(channel);
     } else if (flags->request.delaunay == "tetgen") {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/json_envelope.h"
 #include "exit_codes.h"
 #include "remote_call.h"
 
@@ -29,11 +30,19 @@ void PrintVerbose(const Context& ctx, const std::string& message) {
   if (ctx.verbose) std::cerr << "dotctl: " << message << std::endl;
 }
 
-std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx) {
+std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json) {
   std::string error;
   auto channel = MakeChannel(ctx->connection, &error);
   if (!channel) {
-    PrintError(error);
+    if (json) {
+      JsonEnvelope e;
+      e.outcome = "connection_error";
+      e.exit_code = kExitUsage;
+      e.error = error;
+      std::cout << e.ToJson() << std::endl;
+    } else {
+      PrintError(error);
+    }
     RaiseExitCode(ctx, kExitUsage);
     return nullptr;
   }

@@ -31,8 +31,10 @@ void PrintVerbose(const Context& ctx, const std::string& message);
 
 // The exit code of an RPC's status (exit_codes.h).
 int ExitCodeFor(const grpc::Status& status);
-// The channel to ctx->connection, or null after reporting a usage error.
-std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx);
+// The channel to ctx->connection, or null after reporting a usage error
+// (exit 2): on stderr, or with `json` as the subcommand's envelope with
+// outcome "connection_error" on stdout (an unreadable TLS file, say).
+std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json);
 
 }  // namespace dot::client
 

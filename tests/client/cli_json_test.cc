@@ -75,6 +75,13 @@ TEST_F(JsonCliTest, HealthInfoAndSourceAnswerInJson) {
   std::string e = Envelope(r.out);
   ExpectField(e, "\"rpc_status\":\"OK\"");
   ExpectField(e, "\"status\":\"SERVING\"");
+  // A service the server does not know: NOT_FOUND, as the health
+  // protocol says; the server is reachable.
+  r = Dotctl(flag + "health --service nonesuch --json");
+  EXPECT_EQ(r.code, 1) << r.out;
+  e = Envelope(r.out);
+  ExpectField(e, "\"rpc_status\":\"NOT_FOUND\"");
+  ExpectField(e, "\"status\":\"SERVICE_UNKNOWN\"");
   r = Dotctl(flag + "info --json");
   ASSERT_EQ(r.code, 0) << r.out;
   e = Envelope(r.out);
@@ -100,6 +107,22 @@ TEST_F(JsonCliTest, HealthOfNoServerIsUnreachable) {
   const std::string e = Envelope(r.out);
   ExpectField(e, "\"rpc_status\":\"UNAVAILABLE\"");
   ExpectField(e, "\"status\":\"UNREACHABLE\"");
+}
+
+// Connection flags that make no channel (an unreadable CA file): every
+// subcommand that calls the server says so in its envelope, on stdout.
+TEST_F(JsonCliTest, AnUnusableConnectionIsAnEnvelopeToo) {
+  const std::string tls = "--tls-ca " + Path("missing-ca.pem") + " ";
+  for (const std::string& cmd :
+       {std::string("health --json"), std::string("info --json"),
+        "triangulate " + std::string(DOT_TEST_DATA_DIR) +
+            "/tetgen_aborts.xyz -o " + Path("t.obj") + " --json"}) {
+    const auto r = Dotctl(tls + cmd);
+    EXPECT_EQ(r.code, 2) << cmd << ": " << r.out;
+    const std::string e = Envelope(r.out);
+    ExpectField(e, "\"outcome\":\"connection_error\"");
+    ExpectField(e, "missing-ca.pem");
+  }
 }
 
 // bash completion from the CLI's own definition: subcommands at each

@@ -60,8 +60,7 @@ TEST(PatchOwnersTest, PolygonsTriangulatedAgainAreNotPatches) {
   v1::HoleReport* h = report.add_holes();
   h->set_status(v1::HOLE_STATUS_FILLED);
   for (double c : {0.5, 0.5, 0.0}) h->add_centroid(c);
-  EXPECT_EQ(PatchOwners(quads, triangles, report),
-            std::vector<int32_t>(4, -1));
+  EXPECT_EQ(PatchOwners(quads, triangles, report), std::vector<int32_t>(4, -1));
   // A triangle across the two quads is new, and the only hole's.
   const PolygonSoup crossing{quads.vertices, {{0, 4, 5}}, {}};
   EXPECT_EQ(PatchOwners(quads, crossing, report), std::vector<int32_t>{0});
