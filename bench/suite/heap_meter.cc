@@ -7,20 +7,29 @@
 #include <cstdlib>
 #include <new>
 
+#include "util/flat_vector.h"
+
 namespace dot::bench {
 namespace {
 
 std::atomic<int64_t> live{0}, peak{0}, base{0};
 
-void* Allocate(size_t size) {
-  void* p = std::malloc(size == 0 ? 1 : size);
-  if (p == nullptr) throw std::bad_alloc();
-  const auto bytes = static_cast<int64_t>(malloc_usable_size(p));
+void Count(int64_t bytes) {
   const int64_t now = live.fetch_add(bytes, std::memory_order_relaxed) + bytes;
   int64_t high = peak.load(std::memory_order_relaxed);
   while (now > high &&
          !peak.compare_exchange_weak(high, now, std::memory_order_relaxed)) {
   }
+}
+
+// The core maps its large tables itself (util/flat_vector.h): counted here
+// as the heap they replace.
+const bool metered = (SetTableMeter(&Count), true);
+
+void* Allocate(size_t size) {
+  void* p = std::malloc(size == 0 ? 1 : size);
+  if (p == nullptr) throw std::bad_alloc();
+  Count(static_cast<int64_t>(malloc_usable_size(p)));
   return p;
 }
 

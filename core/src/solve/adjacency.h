@@ -30,13 +30,13 @@ inline constexpr int32_t kMaxVertices = (1 << 24) - 1;
 
 struct Adjacency {
   int32_t n = 0;
-  std::vector<int32_t> edge_lo, edge_hi;  // per edge, lo < hi
-  std::vector<int32_t> inner_begin;       // CSR offsets into inner, E + 1
-  std::vector<int32_t> inner;             // triangle ids with long edge e
-  std::vector<int32_t> outer_begin;       // CSR offsets into outer, E + 1
-  std::vector<int32_t> outer;             // slots 2 * t + s with short edge e
-  FlatVector<int32_t> tri_edges;          // per triangle: [a,b], [b,c], [a,c]
-  int32_t root = -1;                      // edge [0, n-1]
+  Table<int32_t> edge_lo, edge_hi;  // per edge, lo < hi
+  Table<int32_t> inner_begin;       // CSR offsets into inner, E + 1
+  Table<int32_t> inner;             // triangle ids with long edge e
+  Table<int32_t> outer_begin;       // CSR offsets into outer, E + 1
+  Table<int32_t> outer;             // slots 2 * t + s with short edge e
+  FlatVector<int32_t> tri_edges;    // per triangle: [a,b], [b,c], [a,c]
+  int32_t root = -1;                // edge [0, n-1]
   std::vector<int32_t> missing_polygon_edges;  // i: edge (i, i+1 mod n) absent
 
   int32_t edge_count() const { return static_cast<int32_t>(edge_lo.size()); }

@@ -13,8 +13,8 @@ Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t edges = adj.edge_count();
   // Filled in edge order by the pass itself: no up-front initialization.
-  std::vector<double> best;
-  std::vector<int32_t> arg;
+  Table<double> best;
+  Table<int32_t> arg;
   best.reserve(edges);
   arg.reserve(edges);
   RunTicker ticker(control, Stage::kDynamicProgram);
