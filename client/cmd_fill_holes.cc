@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cli/inputs.h"
@@ -222,6 +223,7 @@ std::string ReportPagePath(const FillFlags& f) {
   }
   std::string stem = std::filesystem::path(f.input).stem().string();
   if (IsStreamInput(f.input)) stem = "stdin";
+  std::filesystem::create_directories(named, ec);  // a/new/dir/: made
   return (named / (stem + ".html")).string();
 }
 
@@ -408,6 +410,21 @@ void FillOne(const FillFlags& f, Context* ctx,
   AtomicOutput page_sink;
   const std::string page_path = f.report_page.empty() ? "" : ReportPagePath(f);
   if (output_error.empty() && !page_path.empty()) {
+    // One file, one output: the page never replaces the mesh read or
+    // written, and stdout takes one of them.
+    if (SameFile(f.input, page_path)) {
+      output_error = "--report '" + page_path +
+                     "' would overwrite the input: name another file";
+    } else if (page_path == "-" ? target.to_stdout || f.json
+                                : SameFile(target.Name(), page_path)) {
+      output_error =
+          page_path == "-"
+              ? "--report - and " + std::string(f.json ? "--json" : "-o -") +
+                    " would both write stdout"
+              : "--report '" + page_path + "' would overwrite the filled mesh";
+    }
+  }
+  if (output_error.empty() && !page_path.empty()) {
     output_error = page_sink.Open(page_path);
     if (!output_error.empty()) output_error = "--report: " + output_error;
   }
@@ -561,6 +578,22 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       why = "several meshes need a directory for --report (end it with '/')";
     } else if (inputs.size() > 1 && flags->dry_run && !out.empty()) {
       why = "--dry-run writes no mesh: leave out -o " + out;
+    }
+    // Two inputs named alike would write one file in -o DIR/ or
+    // --report DIR/: the second would replace the first.
+    if (why.empty() && inputs.size() > 1 &&
+        !(out.empty() && flags->report_page.empty())) {
+      std::map<std::string, std::string> seen;
+      for (const std::string& input : inputs) {
+        const std::string stem = std::filesystem::path(input).stem().string();
+        const auto [it, added] = seen.emplace(stem, input);
+        if (!added) {
+          why = "'" + it->second + "' and '" + input +
+                "' would be written to one file (" + stem +
+                ".*) in the output directory: fill them in separate runs";
+          break;
+        }
+      }
     }
     for (const std::string& dir : {out, flags->report_page}) {
       if (!why.empty() || inputs.size() < 2 || dir.empty()) continue;

@@ -21,12 +21,23 @@ struct ViewFlags {
   bool json = false;
 };
 
-// NAME.html beside the input; stdout for a stream.
+// NAME.html beside the input (stdout for a stream), or in the directory
+// -o names.
 std::string PagePath(const ViewFlags& f) {
-  if (!f.output.empty()) return f.output;
-  if (IsStreamInput(f.input)) return "-";
-  std::filesystem::path p(f.input);
-  return p.replace_extension(".html").string();
+  const std::string stem = IsStreamInput(f.input)
+                               ? "stdin"
+                               : std::filesystem::path(f.input).stem().string();
+  std::error_code ec;
+  if (f.output.empty()) {
+    if (IsStreamInput(f.input)) return "-";
+    return std::filesystem::path(f.input).replace_extension(".html").string();
+  }
+  if (f.output != "-" &&
+      (f.output.back() == '/' || std::filesystem::is_directory(f.output, ec))) {
+    std::filesystem::create_directories(f.output, ec);
+    return (std::filesystem::path(f.output) / (stem + ".html")).string();
+  }
+  return f.output;
 }
 
 void View(const ViewFlags& f, Context* ctx) {
@@ -44,7 +55,7 @@ void View(const ViewFlags& f, Context* ctx) {
       PrintError(f.input + ": " + error);
     }
   };
-  if (path == f.input) {
+  if (SameFile(f.input, path)) {
     finish(kOutcomeOutputError, kExitUsage,
            "the page would overwrite the mesh: name another with -o");
     return;
@@ -119,13 +130,14 @@ void AddViewCommand(CLI::App& app, Context* ctx) {
                   "--input-format)")
       ->required();
   cmd->add_option("-o,--output", flags->output,
-                  "the page (- for stdout); default: NAME.html beside the "
-                  "mesh, stdout for a stream");
+                  "the page (- for stdout, DIR/ for DIR/NAME.html); default: "
+                  "NAME.html beside the mesh, stdout for a stream");
   cmd->add_option("--input-format", flags->input_format,
                   "format of a mesh read from stdin")
       ->check(CLI::IsMember({"off", "obj", "ply", "stl"}));
   cmd->add_flag("--json", flags->json,
-                "the outcome as one JSON object on stdout");
+                "the outcome as one JSON object on stdout (on stderr when "
+                "the page goes to stdout)");
   cmd->callback([flags, ctx] { View(*flags, ctx); });
 }
 

@@ -89,35 +89,56 @@ std::vector<Anchor> FilledAnchors(const v1::FillReport& report) {
   return anchors;
 }
 
-// A mesh as the page takes it: float positions about `center`, triangles
-// (polygons as fans) ordered by owner, so each patch is one draw group.
-std::string MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
-                     const Vec3& center) {
+// A mesh as the page takes it: float positions about `center` (of the
+// vertices faces use; unused ones are left out), its faces as triangles
+// (polygons triangulated as the fill reads them, a fan where that fails)
+// ordered by owner, so each patch is one draw group, and its open edges.
+Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
+                const Vec3& center, std::string* json) {
   const Welded w = Weld(soup);
-  std::vector<float> positions;
-  positions.reserve(3 * w.points.size());
-  for (const Vec3& p : w.points) {
-    const Vec3 d = p - center;
-    positions.insert(positions.end(),
-                     {static_cast<float>(d.x), static_cast<float>(d.y),
-                      static_cast<float>(d.z)});
+  MeshData triangulated;
+  std::vector<int32_t> face_of;
+  if (!TriangulateSoup(soup, Control{}, &triangulated, &face_of).ok()) {
+    triangulated.triangles.clear();
+    face_of.clear();
+    for (size_t f = 0; f < soup.faces.size(); ++f) {
+      const FaceView face = soup.faces[f];
+      for (size_t k = 1; k + 1 < face.size(); ++k) {
+        triangulated.triangles.push_back({face[0], face[k], face[k + 1]});
+        face_of.push_back(static_cast<int32_t>(f));
+      }
+    }
   }
+  // Welded vertices the faces use, renumbered in order of first use.
+  std::vector<uint32_t> index(w.points.size(), UINT32_MAX);
+  std::vector<float> positions;
+  auto use = [&](int32_t v) {
+    uint32_t& id = index[w.of[v]];
+    if (id == UINT32_MAX) {
+      id = static_cast<uint32_t>(positions.size() / 3);
+      const Vec3 d = w.points[w.of[v]] - center;
+      positions.insert(positions.end(),
+                       {static_cast<float>(d.x), static_cast<float>(d.y),
+                        static_cast<float>(d.z)});
+    }
+    return id;
+  };
   struct Tri {
     int32_t owner;
     std::array<uint32_t, 3> v;
   };
   std::vector<Tri> tris;
-  tris.reserve(soup.faces.size());
-  std::unordered_map<uint64_t, uint32_t> uses;  // undirected edge -> faces
-  for (size_t f = 0; f < soup.faces.size(); ++f) {
-    const FaceView face = soup.faces[f];
-    const size_t n = face.size();
-    for (size_t k = 0; k < n; ++k) {
-      ++uses[EdgeKey(w.of[face[k]], w.of[face[(k + 1) % n]])];
-    }
-    for (size_t k = 1; k + 1 < n; ++k) {
-      tris.push_back({owner.empty() ? -1 : owner[f],
-                      {w.of[face[0]], w.of[face[k]], w.of[face[k + 1]]}});
+  tris.reserve(triangulated.triangles.size());
+  for (size_t t = 0; t < triangulated.triangles.size(); ++t) {
+    const Triangle& tri = triangulated.triangles[t];
+    tris.push_back({owner.empty() ? -1 : owner[face_of[t]],
+                    {use(tri[0]), use(tri[1]), use(tri[2])}});
+  }
+  for (size_t i = 0; i < positions.size(); ++i) {
+    if (!std::isfinite(positions[i]) || std::fabs(positions[i]) > 1e30f) {
+      return InvalidArgument(
+          "vertex coordinates too large to show (beyond 1e30 from the "
+          "mesh's centre)");
     }
   }
   std::stable_sort(tris.begin(), tris.end(), [](const Tri& a, const Tri& b) {
@@ -136,15 +157,24 @@ std::string MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
            << ",\"hole\":" << tris[i].owner << "}";
     i = j;
   }
-  std::vector<uint64_t> rims;  // edges of one face: a hole's rim, a border
+  // Edges of one polygon: a hole's rim, a border.
+  std::unordered_map<uint64_t, uint32_t> uses;
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    const FaceView face = soup.faces[f];
+    const size_t n = face.size();
+    for (size_t k = 0; k < n; ++k) {
+      ++uses[EdgeKey(w.of[face[k]], w.of[face[(k + 1) % n]])];
+    }
+  }
+  std::vector<uint64_t> rims;
   for (const auto& [key, count] : uses) {
     if (count == 1) rims.push_back(key);
   }
   std::sort(rims.begin(), rims.end());  // deterministic pages
   std::vector<uint32_t> open;
   for (uint64_t key : rims) {
-    open.push_back(static_cast<uint32_t>(key >> 32));
-    open.push_back(static_cast<uint32_t>(key));
+    open.push_back(index[key >> 32]);
+    open.push_back(index[key & 0xffffffffu]);
   }
   auto b64 = [](const auto& v) {
     return "\"" +
@@ -153,9 +183,26 @@ std::string MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
                                  v.size() * sizeof(v[0]))) +
            "\"";
   };
-  return "{\"positions\":" + b64(positions) +
-         ",\"triangles\":" + b64(triangles) + ",\"groups\":[" + groups.str() +
-         "],\"open_edges\":" + b64(open) + "}";
+  *json = "{\"positions\":" + b64(positions) +
+          ",\"triangles\":" + b64(triangles) + ",\"groups\":[" + groups.str() +
+          "],\"open_edges\":" + b64(open) + "}";
+  return OkStatus();
+}
+
+// The centre of the box of the vertices faces use.
+Vec3 UsedCenter(const PolygonSoup& soup) {
+  bool any = false;
+  Vec3 lo, hi;
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    for (int32_t v : soup.faces[f]) {
+      const Vec3& p = soup.vertices[v];
+      if (!any) lo = hi = p;
+      any = true;
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+  }
+  return 0.5 * (lo + hi);
 }
 
 }  // namespace
@@ -275,25 +322,23 @@ Status RenderViewPage(const ViewPage& page, std::string* html) {
     return InvalidArgument("the mesh has no faces to show");
   }
   // Centred on the result's box, so float positions keep their precision.
-  Vec3 lo = page.after->vertices.front(), hi = lo;
-  for (const Vec3& p : page.after->vertices) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  const Vec3 center = 0.5 * (lo + hi);
+  const Vec3 center = UsedCenter(*page.after);
   std::vector<int32_t> owner;
   if (page.before != nullptr && page.report != nullptr) {
     owner = PatchOwners(*page.before, *page.after, *page.report);
   }
+  std::string after, before = "null";
+  Status s = MeshJson(*page.after, owner, center, &after);
+  if (s.ok() && page.before != nullptr) {
+    s = MeshJson(*page.before, {}, center, &before);
+  }
+  if (!s.ok()) return s;
   std::ostringstream data;
   data.precision(17);
   data << "{\"title\":" << JsonQuote(page.title)
        << ",\"summary\":" << JsonQuote(page.summary) << ",\"center\":["
        << center.x << "," << center.y << "," << center.z
-       << "],\"after\":" << MeshJson(*page.after, owner, center)
-       << ",\"before\":"
-       << (page.before ? MeshJson(*page.before, {}, center) : "null")
-       << ",\"report\":"
+       << "],\"after\":" << after << ",\"before\":" << before << ",\"report\":"
        << (page.report ? ProtoJson(*page.report) : std::string("null")) << "}";
   // '<' appears only inside JSON strings, where \u003c reads the same: no
   // name in the data can close the script element that holds it.

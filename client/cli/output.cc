@@ -40,6 +40,18 @@ bool NamesMeshFile(const std::string& path) {
   return IsMeshFormat(LowerExtension(path));
 }
 
+bool SameFile(const std::string& a, const std::string& b) {
+  if (a == "-" || b == "-") return false;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    return fs::equivalent(a, b, ec);
+  }
+  const fs::path x = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  if (ec) return false;
+  const fs::path y = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return !ec && x == y;
+}
+
 OutputTarget ResolveOutput(const std::string& input, const std::string& output,
                            const std::string& format, bool into_directory,
                            const OutputDefaults& defaults) {
@@ -84,8 +96,7 @@ OutputTarget ResolveOutput(const std::string& input, const std::string& output,
   }
   // `-o DIR/` beside the input, or -o naming it: the write would replace
   // the input with its own result.
-  if (t.error.empty() && input != "-" && fs::exists(t.path, ec) &&
-      fs::equivalent(input, t.path, ec)) {
+  if (t.error.empty() && SameFile(input, t.path)) {
     t.error = "-o '" + output + "' would overwrite the input '" + input +
               "': name another file or directory";
   }

@@ -40,6 +40,10 @@ struct OutputDefaults {
 OutputTarget ResolveOutput(const std::string& input, const std::string& output,
                            const std::string& format, bool into_directory,
                            const OutputDefaults& defaults = {});
+// Whether two paths name one file: the same file when both exist (links,
+// "./x", absolute or relative), else the same normalized path. "-" names
+// no file.
+bool SameFile(const std::string& a, const std::string& b);
 // Whether `path` ends in a mesh format's extension (.obj, .ply, .off).
 bool NamesMeshFile(const std::string& path);
 // Writes the mesh (binary PLY for .ply) to stdout, or to a temporary file

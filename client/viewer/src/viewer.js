@@ -132,9 +132,10 @@ function main() {
   const sphere = after.geometry.boundingSphere;
   const radius = Math.max(sphere.radius, 1e-9);
   camera.near = radius / 1000;
-  camera.far = radius * 100;
+  camera.far = radius * 1000;
   camera.updateProjectionMatrix();
   const controls = new OrbitControls(camera, renderer.domElement);
+  controls.maxDistance = radius * 50;  // beyond, the mesh is a dot
 
   let frame = 0;  // frames drawn, for the page's tests
   function render() {
@@ -173,8 +174,15 @@ function main() {
     render();
     if (t < 1) requestAnimationFrame(tick); else flight = null;
   }
+  // The distance at which the bounding sphere fits the narrower of the
+  // view's two angles, with a margin.
+  function fitDistance() {
+    const half = THREE.MathUtils.degToRad(camera.fov / 2);
+    const narrow = Math.min(half, Math.atan(Math.tan(half) * camera.aspect));
+    return 1.08 * radius / Math.sin(narrow);
+  }
   function whole(animate) {
-    const c = sphere.center, d = radius * 2.9;
+    const c = sphere.center, d = fitDistance();
     if (animate) return flyTo(c, d);
     controls.target.copy(c);
     camera.position.copy(c).add(new THREE.Vector3(0.35, 0.45, 1).normalize().multiplyScalar(d));
@@ -224,8 +232,9 @@ function main() {
   });
 
   const legend = document.getElementById('legend');
-  for (const [name, color] of [['surface', SURFACE], ['patch', PATCH],
-                               ['selected', SELECTED], ['open edges', OPEN]]) {
+  const hasPatches = after.groups.size > 0;
+  for (const [name, color] of [['surface', SURFACE], ...(hasPatches ? [['patch', PATCH],
+                               ['selected', SELECTED]] : []), ['open edges', OPEN]]) {
     const s = document.createElement('span');
     s.textContent = name;
     s.style.setProperty('--c', '#' + color.toString(16).padStart(6, '0'));
@@ -257,8 +266,10 @@ function main() {
     const row = body.insertRow();
     row.dataset.hole = h.id;
     const status = statusName(h.status);
-    const note = [h.pinched ? 'pinched' : '', h.joined_to !== undefined ? `island of ${h.joined_to}` : '',
-                  h.reason || ''].filter(Boolean).join('; ');
+    const joins = (h.joined || []).length ? `joins ${h.joined.length > 1 ? 'islands' : 'island'} ${h.joined.join(', ')}` : '';
+    const island = h.joined_to !== undefined && !(h.reason || '').startsWith('island of')
+                       ? `island of hole ${h.joined_to}` : '';
+    const note = [h.pinched ? 'pinched' : '', joins, island, h.reason || ''].filter(Boolean).join('; ');
     const cells = [[String(h.id), 'num'], [String(h.boundary_vertices), 'num'],
                    [status, 'status-' + status],
                    [Number(h.diameter).toPrecision(3), 'num'], [note, 'note']];
@@ -273,8 +284,11 @@ function main() {
     const cell = body.insertRow().insertCell();
     cell.colSpan = 5;
     cell.className = 'note';
-    cell.textContent = 'no holes';
+    cell.textContent = data.report ? 'no holes' : 'holes not listed (see the notes of dotctl)';
   }
+
+  document.getElementById('keys').textContent =
+      (before ? 'b before/after, ' : '') + 'w wireframe, f whole mesh';
 
   controls.addEventListener('change', () => { if (!flight) render(); });
   new ResizeObserver(resize).observe(view);
