@@ -77,16 +77,100 @@ struct Anchor {
   int32_t hole;
 };
 
-std::vector<Anchor> FilledAnchors(const v1::FillReport& report) {
+// Every hole of the report (`filled_only`: those filled), under the id of
+// the hole whose patch fills it (`by_patch`: an island under its rim).
+std::vector<Anchor> Anchors(const v1::FillReport& report, bool filled_only,
+                            bool by_patch) {
   std::vector<Anchor> anchors;
   for (const v1::HoleReport& h : report.holes()) {
-    if (h.status() != v1::HOLE_STATUS_FILLED || h.centroid_size() != 3) {
+    if ((filled_only && h.status() != v1::HOLE_STATUS_FILLED) ||
+        h.centroid_size() != 3) {
       continue;
     }
     anchors.push_back({{h.centroid(0), h.centroid(1), h.centroid(2)},
-                       h.has_joined_to() ? h.joined_to() : h.id()});
+                       by_patch && h.has_joined_to() ? h.joined_to() : h.id()});
   }
   return anchors;
+}
+
+// The hole whose anchor is nearest `at`, or -1 without anchors.
+int32_t NearestHole(const std::vector<Anchor>& anchors, const Vec3& at) {
+  double best = std::numeric_limits<double>::infinity();
+  int32_t hole = -1;
+  for (const Anchor& a : anchors) {
+    const double d = Distance(at, a.at);
+    if (d < best) {
+      best = d;
+      hole = a.hole;
+    }
+  }
+  return hole;
+}
+
+// A mesh's open edges (of one polygon), as its faces run them, in loops
+// (edges joined by their vertices): each loop's hole (nearest centroid;
+// -1 without a report) and the side its rim faces, so the page can show
+// one hole's rim and look into it.
+struct OpenLoop {
+  int32_t hole = -1;
+  Vec3 normal{0, 0, 0};
+  std::vector<uint32_t> edges;  // pairs of welded ids
+};
+
+std::vector<OpenLoop> OpenLoops(const PolygonSoup& soup, const Welded& w,
+                                const v1::FillReport* report) {
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> once;
+  std::unordered_map<uint64_t, uint32_t> uses;
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    const FaceView face = soup.faces[f];
+    const size_t n = face.size();
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t a = w.of[face[k]], b = w.of[face[(k + 1) % n]];
+      const uint64_t key = EdgeKey(a, b);
+      if (++uses[key] == 1) once[key] = {a, b};
+    }
+  }
+  std::vector<uint64_t> keys;  // sorted: deterministic pages
+  for (const auto& [key, count] : uses) {
+    if (count == 1) keys.push_back(key);
+  }
+  std::sort(keys.begin(), keys.end());
+  Components parts(w.points.size());
+  for (uint64_t key : keys) {
+    parts.Join(static_cast<uint32_t>(key >> 32),
+               static_cast<uint32_t>(key & 0xffffffffu));
+  }
+  std::unordered_map<uint32_t, size_t> loop_of;
+  std::vector<OpenLoop> loops;
+  std::vector<Vec3> sums;
+  std::vector<double> lengths;
+  for (uint64_t key : keys) {
+    const auto [a, b] = once[key];
+    const auto [it, added] = loop_of.emplace(parts.Find(a), loops.size());
+    if (added) {
+      loops.emplace_back();
+      sums.push_back({0, 0, 0});
+      lengths.push_back(0);
+    }
+    OpenLoop& loop = loops[it->second];
+    loop.edges.insert(loop.edges.end(), {a, b});
+    const Vec3 &p = w.points[a], &q = w.points[b];
+    const double len = Distance(p, q);
+    sums[it->second] = sums[it->second] + (len / 2) * (p + q);
+    lengths[it->second] += len;
+    // Newell's normal, taken against the faces' direction: a hole's rim
+    // runs the other way round from the surface around it.
+    loop.normal = loop.normal - Cross(p, q);
+  }
+  if (report != nullptr) {
+    const std::vector<Anchor> anchors = Anchors(*report, false, false);
+    for (size_t i = 0; i < loops.size(); ++i) {
+      if (lengths[i] > 0) {
+        loops[i].hole = NearestHole(anchors, (1 / lengths[i]) * sums[i]);
+      }
+    }
+  }
+  return loops;
 }
 
 // A mesh as the page takes it: float positions about `center` (of the
@@ -94,7 +178,8 @@ std::vector<Anchor> FilledAnchors(const v1::FillReport& report) {
 // (polygons triangulated as the fill reads them, a fan where that fails)
 // ordered by owner, so each patch is one draw group, and its open edges.
 Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
-                const Vec3& center, std::string* json) {
+                const v1::FillReport* report, const Vec3& center,
+                std::string* json) {
   const Welded w = Weld(soup);
   MeshData triangulated;
   std::vector<int32_t> face_of;
@@ -157,24 +242,17 @@ Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
            << ",\"hole\":" << tris[i].owner << "}";
     i = j;
   }
-  // Edges of one polygon: a hole's rim, a border.
-  std::unordered_map<uint64_t, uint32_t> uses;
-  for (size_t f = 0; f < soup.faces.size(); ++f) {
-    const FaceView face = soup.faces[f];
-    const size_t n = face.size();
-    for (size_t k = 0; k < n; ++k) {
-      ++uses[EdgeKey(w.of[face[k]], w.of[face[(k + 1) % n]])];
-    }
-  }
-  std::vector<uint64_t> rims;
-  for (const auto& [key, count] : uses) {
-    if (count == 1) rims.push_back(key);
-  }
-  std::sort(rims.begin(), rims.end());  // deterministic pages
+  // Edges of one polygon (a hole's rim, a border), loop by loop.
   std::vector<uint32_t> open;
-  for (uint64_t key : rims) {
-    open.push_back(index[key >> 32]);
-    open.push_back(index[key & 0xffffffffu]);
+  std::ostringstream open_groups;
+  open_groups.precision(9);
+  for (const OpenLoop& loop : OpenLoops(soup, w, report)) {
+    const Vec3 n = Normalized(loop.normal);
+    open_groups << (open.empty() ? "" : ",") << "{\"start\":" << open.size()
+                << ",\"count\":" << loop.edges.size()
+                << ",\"hole\":" << loop.hole << ",\"normal\":[" << n.x << ","
+                << n.y << "," << n.z << "]}";
+    for (uint32_t v : loop.edges) open.push_back(index[v]);
   }
   auto b64 = [](const auto& v) {
     return "\"" +
@@ -185,7 +263,8 @@ Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
   };
   *json = "{\"positions\":" + b64(positions) +
           ",\"triangles\":" + b64(triangles) + ",\"groups\":[" + groups.str() +
-          "],\"open_edges\":" + b64(open) + "}";
+          "],\"open_edges\":" + b64(open) + ",\"open_groups\":[" +
+          open_groups.str() + "]}";
   return OkStatus();
 }
 
@@ -211,7 +290,7 @@ std::vector<int32_t> PatchOwners(const PolygonSoup& before,
                                  const PolygonSoup& after,
                                  const v1::FillReport& report) {
   std::vector<int32_t> owner(after.faces.size(), -1);
-  const std::vector<Anchor> anchors = FilledAnchors(report);
+  const std::vector<Anchor> anchors = Anchors(report, true, true);
   if (anchors.empty() || before.faces.empty()) return owner;
   // before: vertex (by coordinates) -> its faces.
   const Welded wb = Weld(before);
@@ -290,15 +369,8 @@ std::vector<int32_t> PatchOwners(const PolygonSoup& before,
   }
   std::unordered_map<uint32_t, int32_t> hole_of;
   for (const auto& [root, rim] : rims) {
-    if (rim.length <= 0) continue;
-    double best = std::numeric_limits<double>::infinity();
-    const Vec3 centroid = (1 / rim.length) * rim.sum;
-    for (const Anchor& a : anchors) {
-      const double d = Distance(centroid, a.at);
-      if (d < best) {
-        best = d;
-        hole_of[root] = a.hole;
-      }
+    if (rim.length > 0) {
+      hole_of[root] = NearestHole(anchors, (1 / rim.length) * rim.sum);
     }
   }
   for (size_t f = 0; f < after.faces.size(); ++f) {
@@ -328,9 +400,9 @@ Status RenderViewPage(const ViewPage& page, std::string* html) {
     owner = PatchOwners(*page.before, *page.after, *page.report);
   }
   std::string after, before = "null";
-  Status s = MeshJson(*page.after, owner, center, &after);
+  Status s = MeshJson(*page.after, owner, page.report, center, &after);
   if (s.ok() && page.before != nullptr) {
-    s = MeshJson(*page.before, {}, center, &before);
+    s = MeshJson(*page.before, {}, page.report, center, &before);
   }
   if (!s.ok()) return s;
   std::ostringstream data;

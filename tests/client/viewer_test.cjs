@@ -111,11 +111,21 @@ async function settle(page) {
     const whole = await pixels(page);
     check(whole.drawn > 0.1 * whole.all,
           `the mesh is drawn (${(100 * whole.drawn / whole.all).toFixed(1)} % of the canvas)`);
-    const open = holes.find((h) => h.status !== 'HOLE_STATUS_FILLED').id;
+    // Each hole's rim is its own loop: after the fill, the open holes'; before
+    // it, every hole's.
+    const openIds = holes.filter((h) => h.status !== 'HOLE_STATUS_FILLED').map((h) => h.id);
+    const rimsAfter = (await page.evaluate(() => window.dotViewer.rimHoles(false))).sort();
+    const rimsBefore = (await page.evaluate(() => window.dotViewer.rimHoles(true))).sort();
+    check(JSON.stringify(rimsAfter) === JSON.stringify(openIds.sort()),
+          `after: one rim per open hole: ${rimsAfter} (open ${openIds})`);
+    check(JSON.stringify(rimsBefore) === JSON.stringify(holes.map((h) => h.id).sort()),
+          `before: one rim per hole: ${rimsBefore}`);
+    const open = openIds[0];
     await page.evaluate((h) => window.dotViewer.select(h), open);
     await settle(page);
     const rim = await pixels(page);
-    check(rim.open > 50, `hole ${open}, left open: the camera flies to its rim (${rim.open} px)`);
+    check(rim.selected > 50,
+          `hole ${open}, left open: the camera flies to its rim, shown selected (${rim.selected} px)`);
 
     for (const id of filled) {
       await page.evaluate((h) => window.dotViewer.select(h), id);
@@ -131,8 +141,8 @@ async function settle(page) {
     await page.evaluate((h) => window.dotViewer.select(h), filled[0]);
     await settle(page);
     const before = await pixels(page);
-    check(before.patch === 0 && before.selected === 0 && before.open > 50,
-          `before: hole ${filled[0]} open, its rim drawn (${before.open} px), no patch`);
+    check(before.patch === 0 && before.selected > 50,
+          `before: hole ${filled[0]} open, its rim drawn selected (${before.selected} px), no patch`);
     await page.evaluate(() => window.dotViewer.showBefore(false));
 
     // Keys: b toggles before/after.
@@ -165,8 +175,8 @@ async function settle(page) {
     await v.page.evaluate((h) => window.dotViewer.select(h), filled[0]);
     await settle(v.page);
     const vp = await pixels(v.page);
-    check(drawn.drawn > 0.1 * drawn.all && vp.patch === 0 && vp.open > 50,
-          `view draws the mesh, and hole ${filled[0]}'s rim (${vp.open} px), no patch`);
+    check(drawn.drawn > 0.1 * drawn.all && drawn.open > 0 && vp.patch === 0 && vp.selected > 50,
+          `view draws the mesh and its rims (${drawn.open} px), hole ${filled[0]}'s selected (${vp.selected} px), no patch`);
     check(v.errors.length === 0, `view: no console errors (${v.errors.join(' | ')})`);
   } finally {
     await browser.close();

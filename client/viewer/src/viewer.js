@@ -47,19 +47,30 @@ function buildMesh(m) {
   const surface = new THREE.Mesh(geometry, materials);
   const group = new THREE.Group();
   group.add(surface);
+  // Open edges, loop by loop: each hole's rim turns SELECTED with it.
   const open = decode(m.open_edges, Uint32Array);
+  const rims = new Map();  // hole id -> {groups, normal} of its rim loops
   if (open.length) {
     const lines = new THREE.BufferGeometry();
     lines.setAttribute('position', geometry.getAttribute('position'));
     lines.setIndex(new THREE.BufferAttribute(open, 1));
-    group.add(new THREE.LineSegments(
-        lines, new THREE.LineBasicMaterial({color: OPEN})));
+    for (const g of m.open_groups || []) {
+      lines.addGroup(g.start, g.count, 0);
+      if (g.hole < 0) continue;
+      const rim = rims.get(g.hole) || {groups: [], normal: new THREE.Vector3()};
+      rim.groups.push(lines.groups[lines.groups.length - 1]);
+      rim.normal.add(new THREE.Vector3(...g.normal).multiplyScalar(g.count));
+      rims.set(g.hole, rim);
+    }
+    if (lines.groups.length === 0) lines.addGroup(0, open.length, 0);
+    group.add(new THREE.LineSegments(lines, [OPEN, SELECTED].map(
+        (color) => new THREE.LineBasicMaterial({color}))));
   }
   const wire = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({
     color: 0x202020, wireframe: true, transparent: true, opacity: 0.25}));
   wire.visible = false;
   group.add(wire);
-  return {group, surface, wire, groups, patches, geometry};
+  return {group, surface, wire, groups, patches, rims, geometry};
 }
 
 // The side the surface around `at` faces: the area-weighted normal of the
@@ -250,16 +261,26 @@ function main() {
     for (const row of body.rows) row.classList.toggle('selected', Number(row.dataset.hole) === id);
     const owner = hole.joined_to !== undefined ? hole.joined_to : id;
     for (const [hid, g] of after.groups) g.materialIndex = hid === owner ? 2 : 1;
+    for (const mesh of [after, before]) {
+      if (!mesh) continue;
+      for (const [hid, rim] of mesh.rims) {
+        for (const g of rim.groups) g.materialIndex = hid === id ? 1 : 0;
+      }
+    }
     selected = id;
     // A filled hole: its patch, seen from the side it faces; an open one
-    // (or the mesh before): its loop's centroid, seen from outside the mesh.
+    // (or the mesh before): its rim, seen from the side the rim faces (into
+    // the hole), else from the side of the surface around it.
+    const shown = showingBefore ? before : after;
     const frame = showingBefore ? null : after.patches.get(owner);
+    const rim = shown.rims.get(id);
     const c = hole.centroid || [0, 0, 0];
     const target = frame ? frame.center
                          : new THREE.Vector3(c[0] - center[0], c[1] - center[1], c[2] - center[2]);
-    flyTo(target, Math.max(hole.diameter * 3.2, radius * 0.3),
-          frame ? frame.normal : surfaceNormal(showingBefore ? before : after, target,
-                                               hole.diameter));
+    const from = frame ? frame.normal
+               : rim && rim.normal.lengthSq() > 0 ? rim.normal.clone().normalize()
+                                                  : surfaceNormal(shown, target, hole.diameter);
+    flyTo(target, Math.max(hole.diameter * 3.2, radius * 0.3), from);
     return true;
   }
   for (const h of holes) {
@@ -302,6 +323,7 @@ function main() {
         (r) => ({id: Number(r.dataset.hole), edges: Number(r.cells[1].textContent),
                  status: r.cells[2].textContent})),
     patchGroups: () => [...after.groups.keys()],
+    rimHoles: (ofBefore) => [...(ofBefore ? before : after).rims.keys()],
     select,
     selected: () => selected,
     showBefore: (on) => { if (before && on !== showingBefore) keys.b.flip(); return showingBefore; },
