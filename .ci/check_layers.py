@@ -17,7 +17,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 # for its licence) is a search-space backend.
 LAYERS = [
     ("base", ["util"],
-     ["status.h", "geometry.h", "elapsed.h", "mesh.h", "control.h"]),
+     ["status.h", "geometry.h", "elapsed.h", "mesh.h", "control.h",
+      "table_memory.h"]),
     ("vocabulary", [], ["metrics.h", "problem.h"]),
     ("mesh", ["mesh"], ["validate.h"]),
     ("polygon", ["polygon"], []),

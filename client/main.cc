@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "dot/table_memory.h"
 #include "exit_codes.h"
 #include "remote_call.h"
 
@@ -77,6 +78,9 @@ int main(int argc, char** argv) {
     return dot::DelaunayHelperMain("dotctl --delaunay-helper", argc - 1,
                                    argv + 1);
   }
+  // --local and batch runs solve one input after another: each reuses the
+  // pages of the last one's tables.
+  dot::SetTableCacheBytes(size_t{256} << 20);
   CLI::App app{
       "dotctl: optimal, intersection-free triangulation of 3D polygons.\n"
       "Talks to a dot-server (--server, or DOT_SERVER), or runs the core "

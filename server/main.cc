@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "config.h"
+#include "dot/table_memory.h"
 #include "dot_server.h"
 #include "listener_watchdog.h"
 #include "log_format.h"
@@ -58,6 +59,8 @@ int main(int argc, char** argv) {
         std::min<int64_t>(config.service.malloc_keep_bytes, int64_t{1} << 30));
     mallopt(M_MMAP_THRESHOLD, keep / 2);
     mallopt(M_TRIM_THRESHOLD, keep);
+    // The solve's large tables are mapped apart from malloc: kept alike.
+    dot::SetTableCacheBytes(static_cast<size_t>(keep));
   }
 
   // Every connection costs a file descriptor: use all the hard limit

@@ -21,6 +21,7 @@
 #include "dot/problem.h"          // IWYU pragma: export
 #include "dot/space_cache.h"      // IWYU pragma: export
 #include "dot/status.h"           // IWYU pragma: export
+#include "dot/table_memory.h"     // IWYU pragma: export
 #include "dot/triangulate.h"      // IWYU pragma: export
 #include "dot/validate.h"         // IWYU pragma: export
 

@@ -4,6 +4,8 @@
 #include <sys/mman.h>
 
 #include <atomic>
+#include <mutex>
+#include <vector>
 
 namespace dot {
 namespace {
@@ -26,12 +28,66 @@ constexpr bool kMap = true;
 
 size_t Rounded(size_t bytes) { return (bytes + kHuge - 1) & ~(kHuge - 1); }
 
-}  // namespace
+// Freed blocks kept for reuse, up to `limit` bytes in all. Few tables
+// live at once, so a short list under a mutex does.
+struct Cache {
+  std::mutex mutex;
+  size_t limit = 0, held = 0;
+  std::vector<std::pair<void*, size_t>> blocks;  // start, mapped size
 
-void* AllocateTable(size_t bytes) {
-  if (!kMap || bytes < kMapped) return ::operator new(bytes);
+  // The smallest kept block of at least `size`, its tail beyond `size`
+  // unmapped; null when none.
+  void* Take(size_t size) {
+    std::lock_guard<std::mutex> lock(mutex);
+    size_t best = blocks.size();
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      if (blocks[i].second >= size &&
+          (best == blocks.size() || blocks[i].second < blocks[best].second)) {
+        best = i;
+      }
+    }
+    if (best == blocks.size()) return nullptr;
+    auto [p, mapped] = blocks[best];
+    blocks.erase(blocks.begin() + static_cast<ptrdiff_t>(best));
+    held -= mapped;
+    if (mapped > size) ::munmap(static_cast<char*>(p) + size, mapped - size);
+    return p;
+  }
+  // Keeps the block when it fits under the limit (dropping older ones).
+  bool Keep(void* p, size_t size) noexcept {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (size > limit) return false;
+    while (held + size > limit && !blocks.empty()) {
+      ::munmap(blocks.front().first, blocks.front().second);
+      held -= blocks.front().second;
+      blocks.erase(blocks.begin());
+    }
+    try {
+      blocks.emplace_back(p, size);
+    } catch (const std::bad_alloc&) {
+      return false;
+    }
+    held += size;
+    return true;
+  }
+  void SetLimit(size_t bytes) {
+    std::lock_guard<std::mutex> lock(mutex);
+    limit = bytes;
+    while (held > limit) {
+      ::munmap(blocks.front().first, blocks.front().second);
+      held -= blocks.front().second;
+      blocks.erase(blocks.begin());
+    }
+  }
+};
+
+Cache& TheCache() {
+  static Cache* cache = new Cache;  // outlives every table, also at exit
+  return *cache;
+}
+
+void* Map(size_t size) {
   // Map kHuge more, keep the 2 MiB-aligned part, return the rest at once.
-  const size_t size = Rounded(bytes);
   void* raw = ::mmap(nullptr, size + kHuge, PROT_READ | PROT_WRITE,
                      MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
@@ -45,6 +101,16 @@ void* AllocateTable(size_t bytes) {
   void* p = reinterpret_cast<void*>(aligned);
   // Advice only: where the kernel has no THP, pages stay 4 KiB.
   ::madvise(p, size, MADV_HUGEPAGE);
+  return p;
+}
+
+}  // namespace
+
+void* AllocateTable(size_t bytes) {
+  if (!kMap || bytes < kMapped) return ::operator new(bytes);
+  const size_t size = Rounded(bytes);
+  void* p = TheCache().Take(size);
+  if (p == nullptr) p = Map(size);
   if (TableMeter m = meter.load(std::memory_order_relaxed)) {
     m(static_cast<int64_t>(bytes));
   }
@@ -57,12 +123,14 @@ void FreeTable(void* p, size_t bytes) noexcept {
     ::operator delete(p);
     return;
   }
-  ::munmap(p, Rounded(bytes));
+  if (!TheCache().Keep(p, Rounded(bytes))) ::munmap(p, Rounded(bytes));
   if (TableMeter m = meter.load(std::memory_order_relaxed)) {
     m(-static_cast<int64_t>(bytes));
   }
 }
 
 void SetTableMeter(TableMeter m) { meter.store(m); }
+
+void SetTableCacheBytes(size_t bytes) { TheCache().SetLimit(bytes); }
 
 }  // namespace dot

@@ -6,7 +6,8 @@
 // huge pages on them (madvise; THP "madvise" or "always" grants them), so a
 // 2 MiB page faults once: in every entry point, with no environment
 // variable. Pages are still touched only as written, so memory use is as
-// before; SetTableMeter lets a heap meter count these blocks too.
+// before; SetTableMeter lets a heap meter count these blocks too, and
+// SetTableCacheBytes keeps freed blocks warm for the next solve.
 // FlatVector is the same with resize() leaving trivial elements
 // uninitialized: DP tables are written before they are read, and
 // zero-filling them first costs a page-faulting pass no cancel flag can
@@ -21,6 +22,8 @@
 #include <utility>
 #include <vector>
 
+#include "dot/table_memory.h"
+
 namespace dot {
 
 // A block for a table: from operator new below 1 MiB (and in sanitizer
@@ -32,6 +35,7 @@ void FreeTable(void* p, size_t bytes) noexcept;
 // operator new, which a replaced operator new sees): for heap meters.
 using TableMeter = void (*)(int64_t delta);
 void SetTableMeter(TableMeter meter);
+// SetTableCacheBytes (dot/table_memory.h) keeps freed mapped blocks.
 
 template <typename T>
 struct TableAllocator : std::allocator<T> {
