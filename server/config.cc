@@ -150,9 +150,9 @@ void AddServerFlags(CLI::App& app, ServerConfig* c) {
           "with new weights runs only the dynamic program (0: no cache)");
   AddSize(app, "--malloc-keep-mb", 20, &s.malloc_keep_bytes,
           "DOT_MALLOC_KEEP_MB",
-          "freed memory the allocator keeps for the next requests instead "
-          "of returning it to the kernel (at most 1024; 0: glibc's "
-          "defaults)");
+          "freed memory kept for the next requests instead of returned "
+          "to the kernel, half in malloc, half as solve tables (at most "
+          "1024; 0: glibc's defaults, no tables kept)");
   AddInt(app, "--inline-max-vertices", &s.inline_max_vertices,
          "DOT_INLINE_MAX_VERTICES",
          "Triangulate calls over the Delaunay space up to this many vertices "

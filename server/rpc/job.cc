@@ -7,6 +7,7 @@
 #include <exception>
 #include <utility>
 
+#include "dot/table_memory.h"
 #include "rpc/request_log.h"
 #include "wire/wire.h"
 
@@ -304,9 +305,14 @@ std::string_view StopReasonName(StopReason r) {
 void JobRunner::ReturnFreedMemory() {
   const int64_t keep = options_.malloc_keep_bytes;
   if (keep <= 0) return;
-  // The trim runs only when more than `keep` lies free.
+  // The trim runs only when more than `keep` lies free: in malloc's lists
+  // and in the core's kept tables (half each, see main.cc).
   const struct mallinfo2 info = ::mallinfo2();
-  if (static_cast<int64_t>(info.fordblks) > keep) ::malloc_trim(0);
+  const auto tables = static_cast<int64_t>(TableCacheBytesHeld());
+  if (static_cast<int64_t>(info.fordblks) + tables > keep) {
+    ::malloc_trim(0);
+    TrimTableCache(static_cast<size_t>(keep / 2));
+  }
 }
 
 void JobRunner::Answered(const Job& job, const grpc::Status& status) {

@@ -11,13 +11,16 @@ namespace dot {
 namespace {
 
 constexpr size_t kHuge = size_t{2} << 20;
-constexpr size_t kMapped = size_t{1} << 20;  // smaller blocks: operator new
+constexpr size_t kPage = 4096;
 std::atomic<TableMeter> meter{nullptr};
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kMap = false;  // ASan checks tables only from its heap
+// Sanitizers watch the heap (ASan its bounds, MSan what is initialized,
+// TSan its races): their builds keep every table there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kMap = false;
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
+    __has_feature(thread_sanitizer)
 constexpr bool kMap = false;
 #else
 constexpr bool kMap = true;
@@ -26,27 +29,43 @@ constexpr bool kMap = true;
 constexpr bool kMap = true;
 #endif
 
-size_t Rounded(size_t bytes) { return (bytes + kHuge - 1) & ~(kHuge - 1); }
+// Whole pages: the last, partial 2 MiB of a table stays on 4 KiB pages, so
+// no table holds more than it touches.
+size_t Rounded(size_t bytes) { return (bytes + kPage - 1) & ~(kPage - 1); }
 
-// Freed blocks kept for reuse, up to `limit` bytes in all. Few tables
-// live at once, so a short list under a mutex does.
+// Freed blocks kept for reuse, up to `limit` bytes in all, oldest first.
+// Few tables live at once, so a short list under a mutex does.
 struct Cache {
   std::mutex mutex;
   size_t limit = 0, held = 0;
   std::vector<std::pair<void*, size_t>> blocks;  // start, mapped size
 
-  // The smallest kept block of at least `size`, its tail beyond `size`
-  // unmapped; null when none.
+  void DropOldest() {
+    ::munmap(blocks.front().first, blocks.front().second);
+    held -= blocks.front().second;
+    blocks.erase(blocks.begin());
+  }
+  // The smallest kept block of `size` to twice that (a larger one would
+  // waste its warm tail), its tail beyond `size` unmapped. On a miss, kept
+  // blocks of `size` bytes in all go back to the kernel first: the new
+  // table replaces them.
   void* Take(size_t size) {
     std::lock_guard<std::mutex> lock(mutex);
     size_t best = blocks.size();
     for (size_t i = 0; i < blocks.size(); ++i) {
-      if (blocks[i].second >= size &&
-          (best == blocks.size() || blocks[i].second < blocks[best].second)) {
+      const size_t s = blocks[i].second;
+      if (s >= size && s <= 2 * size + kHuge &&
+          (best == blocks.size() || s < blocks[best].second)) {
         best = i;
       }
     }
-    if (best == blocks.size()) return nullptr;
+    if (best == blocks.size()) {
+      for (size_t freed = 0; freed < size && !blocks.empty();) {
+        freed += blocks.front().second;
+        DropOldest();
+      }
+      return nullptr;
+    }
     auto [p, mapped] = blocks[best];
     blocks.erase(blocks.begin() + static_cast<ptrdiff_t>(best));
     held -= mapped;
@@ -57,11 +76,7 @@ struct Cache {
   bool Keep(void* p, size_t size) noexcept {
     std::lock_guard<std::mutex> lock(mutex);
     if (size > limit) return false;
-    while (held + size > limit && !blocks.empty()) {
-      ::munmap(blocks.front().first, blocks.front().second);
-      held -= blocks.front().second;
-      blocks.erase(blocks.begin());
-    }
+    while (held + size > limit && !blocks.empty()) DropOldest();
     try {
       blocks.emplace_back(p, size);
     } catch (const std::bad_alloc&) {
@@ -70,14 +85,9 @@ struct Cache {
     held += size;
     return true;
   }
-  void SetLimit(size_t bytes) {
+  void Trim(size_t bytes) {
     std::lock_guard<std::mutex> lock(mutex);
-    limit = bytes;
-    while (held > limit) {
-      ::munmap(blocks.front().first, blocks.front().second);
-      held -= blocks.front().second;
-      blocks.erase(blocks.begin());
-    }
+    while (held > bytes) DropOldest();
   }
 };
 
@@ -88,8 +98,10 @@ Cache& TheCache() {
 
 void* Map(size_t size) {
   // Map kHuge more, keep the 2 MiB-aligned part, return the rest at once.
+  // No MAP_NORESERVE: a table the machine cannot hold is refused here
+  // (bad_alloc, then RESOURCE_EXHAUSTED), not killed when touched.
   void* raw = ::mmap(nullptr, size + kHuge, PROT_READ | PROT_WRITE,
-                     MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
   const auto begin = reinterpret_cast<uintptr_t>(raw);
   const uintptr_t aligned = (begin + kHuge - 1) & ~(kHuge - 1);
@@ -107,7 +119,8 @@ void* Map(size_t size) {
 }  // namespace
 
 void* AllocateTable(size_t bytes) {
-  if (!kMap || bytes < kMapped) return ::operator new(bytes);
+  if (!kMap || bytes < kTableMapBytes) return ::operator new(bytes);
+  if (bytes > SIZE_MAX - kHuge) throw std::bad_alloc();
   const size_t size = Rounded(bytes);
   void* p = TheCache().Take(size);
   if (p == nullptr) p = Map(size);
@@ -119,7 +132,7 @@ void* AllocateTable(size_t bytes) {
 
 void FreeTable(void* p, size_t bytes) noexcept {
   if (p == nullptr) return;
-  if (!kMap || bytes < kMapped) {
+  if (!kMap || bytes < kTableMapBytes) {
     ::operator delete(p);
     return;
   }
@@ -131,6 +144,21 @@ void FreeTable(void* p, size_t bytes) noexcept {
 
 void SetTableMeter(TableMeter m) { meter.store(m); }
 
-void SetTableCacheBytes(size_t bytes) { TheCache().SetLimit(bytes); }
+void SetTableCacheBytes(size_t bytes) {
+  Cache& cache = TheCache();
+  {
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    cache.limit = bytes;
+  }
+  cache.Trim(bytes);
+}
+
+size_t TableCacheBytesHeld() {
+  Cache& cache = TheCache();
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  return cache.held;
+}
+
+void TrimTableCache(size_t bytes) { TheCache().Trim(bytes); }
 
 }  // namespace dot

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// Vectors for the large tables of a solve (candidate triangles, adjacency,
-// DP entries). Their first touch was a fifth of a large solve: every 4 KiB
-// page faults once, about 9 us each in a VM. TableAllocator maps blocks of
-// 1 MiB or more itself, 2 MiB-aligned, and asks the kernel for transparent
-// huge pages on them (madvise; THP "madvise" or "always" grants them), so a
-// 2 MiB page faults once: in every entry point, with no environment
-// variable. Pages are still touched only as written, so memory use is as
-// before; SetTableMeter lets a heap meter count these blocks too, and
-// SetTableCacheBytes keeps freed blocks warm for the next solve.
+// Vectors for the large tables of a solve (adjacency, DP entries) and of
+// the edge index. Their first touch was a fifth of a large solve: every
+// 4 KiB page faults once, about 9 us each in a VM. TableAllocator maps
+// blocks of 2 MiB or more itself, starting on a 2 MiB boundary, and asks
+// the kernel for transparent huge pages on them (madvise; THP "madvise"
+// or "always" grants them), so each whole 2 MiB faults once: in every
+// entry point, with no environment variable. A table's partial last 2 MiB
+// stays on 4 KiB pages, so it holds no more than it touches; SetTableMeter
+// lets a heap meter count these blocks, and SetTableCacheBytes keeps freed
+// ones warm for the next solve.
 // FlatVector is the same with resize() leaving trivial elements
 // uninitialized: DP tables are written before they are read, and
 // zero-filling them first costs a page-faulting pass no cancel flag can
@@ -26,9 +27,11 @@
 
 namespace dot {
 
-// A block for a table: from operator new below 1 MiB (and in sanitizer
-// builds, which watch the heap), else mapped on huge pages. Throws
-// std::bad_alloc when the kernel refuses. Free with the same size.
+// Blocks from this size on are mapped; smaller ones come from operator new.
+inline constexpr size_t kTableMapBytes = size_t{2} << 20;
+// A block for a table: from operator new below kTableMapBytes (and in
+// sanitizer builds, which watch the heap), else mapped on huge pages.
+// Throws std::bad_alloc when the kernel refuses. Free with the same size.
 void* AllocateTable(size_t bytes);
 void FreeTable(void* p, size_t bytes) noexcept;
 // Called with +bytes / -bytes for every mapped block (not for those from
@@ -37,8 +40,12 @@ using TableMeter = void (*)(int64_t delta);
 void SetTableMeter(TableMeter meter);
 // SetTableCacheBytes (dot/table_memory.h) keeps freed mapped blocks.
 
+// C++17's std::vector calls allocate and deallocate only (C++23's
+// allocate_at_least would bypass them: the project builds C++17).
 template <typename T>
 struct TableAllocator : std::allocator<T> {
+  static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__,
+                "operator new(size) would not align T");
   template <typename U>
   struct rebind {
     using other = TableAllocator<U>;

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <numeric>
 
+#include "dot/table_memory.h"
+
 namespace dot {
 namespace {
 
@@ -67,12 +69,35 @@ TEST(TableAllocatorTest, FreedTablesAreKeptOnlyWhenAsked) {
     EXPECT_EQ(static_cast<const void*>(b.data()), first);
     b[(size_t{2} << 20) - 1] = 2;
   }
-  SetTableCacheBytes(0);  // returns what it held
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{16} << 20);  // the tail went
+  SetTableCacheBytes(0);                               // returns what it held
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);
   {
     FlatVector<double> c(size_t{2} << 20);
     c[0] = 3;
     EXPECT_EQ(c[0], 3);
   }
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);
+}
+
+// Kept blocks too small for a table go back to the kernel before it is
+// mapped, and a block far larger than asked is not cut down for it.
+TEST(TableAllocatorTest, KeptBlocksThatCannotServeAreReturned) {
+  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  SetTableCacheBytes(size_t{256} << 20);
+  { Table<char> small(size_t{4} << 20); }
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);
+  { Table<char> larger(size_t{8} << 20); }  // a miss: the 4 MiB go back
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{8} << 20);
+  { Table<char> big(size_t{100} << 20); }  // a miss: the 8 MiB go back
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{100} << 20);
+  {
+    Table<char> tiny(size_t{3} << 20);     // 100 MiB is too large to cut down
+    EXPECT_EQ(TableCacheBytesHeld(), 0u);  // ... and a miss returns it
+  }
+  TrimTableCache(0);
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);
+  SetTableCacheBytes(0);
 }
 
 }  // namespace
