@@ -23,11 +23,6 @@ packages=(
 if ! command -v npm >/dev/null || ! command -v node >/dev/null; then
   packages+=(nodejs npm)
 fi
-# DeployPolicyTest renders deploy/ with `kubectl kustomize`: Debian's
-# kubernetes-client unless a kubectl is there already.
-if ! command -v kubectl >/dev/null; then
-  packages+=(kubernetes-client)
-fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
