@@ -8,8 +8,9 @@ scale (no replicas beside it), images by version (never latest), every
 container with requests, limits and both probes, metrics scraped per pod
 (annotations naming a declared port, no Service exposing it, a PodMonitor
 in the operator overlay), and the image's metrics bound where EXPOSE says,
-with OCI labels. Exit 77 (skipped) without kubectl.
+with OCI labels. Exit 77 (skipped) without kubectl 1.21 or later.
 """
+import json
 import pathlib
 import re
 import shutil
@@ -36,6 +37,16 @@ def render(directory):
 def main():
     if shutil.which("kubectl") is None:
         print("kubectl not installed: skipped")
+        return 77
+    # Debian bookworm's kubernetes-client (1.20) embeds kustomize 2, which
+    # reads neither `labels:` nor a directory as a resource.
+    version = json.loads(subprocess.run(
+        ["kubectl", "version", "--client", "-o", "json"], check=True,
+        capture_output=True, text=True).stdout)["clientVersion"]
+    minor = int("".join(c for c in version["minor"] if c.isdigit()) or 0)
+    if (int(version["major"]), minor) < (1, 21):
+        print(f"kubectl {version['gitVersion']} is older than 1.21 "
+              "(kustomize 4): skipped")
         return 77
     base = render("deploy/k8s")
     overlay = render("deploy/prometheus-operator")
