@@ -145,13 +145,19 @@ async function settle(page) {
           `before: hole ${filled[0]} open, its rim drawn selected (${before.selected} px), no patch`);
     await page.evaluate(() => window.dotViewer.showBefore(false));
 
-    // Keys: b toggles before/after.
+    // Keys: a row chosen with Enter, b (or B) toggles before/after.
+    await page.focus(`tr[data-hole="${filled[1]}"]`);
+    await page.keyboard.press('Enter');
+    check(await page.evaluate(() => window.dotViewer.selected()) === filled[1],
+          `Enter on hole ${filled[1]}'s row selects it`);
+    const pressed = () => page.evaluate(
+        () => document.querySelector('#tools button').getAttribute('aria-pressed'));
+    await page.keyboard.press('Shift+B');
+    check(await pressed() === 'true', 'key B shows the mesh before the fill');
     await page.keyboard.press('b');
-    const toggled = await page.evaluate(() => document.querySelector('#tools button').getAttribute('aria-pressed'));
-    check(toggled === 'true', 'key b shows the mesh before the fill');
+    check(await pressed() === 'false', 'key b shows the result again');
 
     if (screenshot) {
-      await page.keyboard.press('b');
       await page.evaluate((h) => window.dotViewer.select(h), filled[0]);
       await settle(page);
       await page.screenshot({path: screenshot});

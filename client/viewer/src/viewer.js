@@ -237,9 +237,10 @@ function main() {
   fit.addEventListener('click', () => whole(true));
   tools.appendChild(fit);
   window.addEventListener('keydown', (e) => {
-    if (e.target.tagName === 'INPUT') return;
-    if (keys[e.key]) keys[e.key].flip();
-    if (e.key === 'f') whole(true);
+    if (e.target.tagName === 'INPUT' || e.ctrlKey || e.metaKey || e.altKey) return;
+    const key = e.key.toLowerCase();
+    if (keys[key]) keys[key].flip();
+    if (key === 'f') whole(true);
   });
 
   const legend = document.getElementById('legend');
@@ -300,6 +301,14 @@ function main() {
       cell.className = cls;
     }
     row.addEventListener('click', () => select(h.id));
+    // Rows are reached with Tab and chosen with Enter or Space too.
+    row.tabIndex = 0;
+    row.addEventListener('keydown', (e) => {
+      if (e.key === 'Enter' || e.key === ' ') {
+        e.preventDefault();
+        select(h.id);
+      }
+    });
   }
   if (holes.length === 0) {
     const cell = body.insertRow().insertCell();
