@@ -173,6 +173,37 @@ std::vector<OpenLoop> OpenLoops(const PolygonSoup& soup, const Welded& w,
   return loops;
 }
 
+// The file's colours (a "color" channel, per vertex or per corner, in
+// [0, 1]) as RGB bytes per welded vertex (its first corner's where corners
+// differ), or none.
+std::vector<uint8_t> VertexColors(const PolygonSoup& soup, const Welded& w) {
+  const AttributeChannel* color = nullptr;
+  for (const AttributeChannel& ch : soup.attributes) {
+    if (ch.name == "color" && ch.dims >= 3) color = &ch;
+  }
+  if (color == nullptr) return {};
+  std::vector<uint8_t> rgb(3 * w.points.size(), 200);
+  std::vector<bool> set(w.points.size(), false);
+  auto byte = [](float x) {
+    return static_cast<uint8_t>(std::lround(255 * std::clamp(x, 0.0f, 1.0f)));
+  };
+  size_t corner = 0;
+  for (size_t f = 0; f < soup.faces.size(); ++f) {
+    for (int32_t v : soup.faces[f]) {
+      const size_t entry = color->per_corner()
+                               ? static_cast<size_t>(color->indices[corner])
+                               : static_cast<size_t>(v);
+      ++corner;
+      const uint32_t at = w.of[v];
+      if (set[at] || entry >= color->entries()) continue;
+      set[at] = true;
+      for (int k = 0; k < 3; ++k)
+        rgb[3 * at + k] = byte(color->entry(entry)[k]);
+    }
+  }
+  return rgb;
+}
+
 // A mesh as the page takes it: float positions about `center` (of the
 // vertices faces use; unused ones are left out), its faces as triangles
 // (polygons triangulated as the fill reads them, a fan where that fails)
@@ -194,9 +225,11 @@ Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
       }
     }
   }
+  const std::vector<uint8_t> rgb = VertexColors(soup, w);
   // Welded vertices the faces use, renumbered in order of first use.
   std::vector<uint32_t> index(w.points.size(), UINT32_MAX);
   std::vector<float> positions;
+  std::vector<uint8_t> colors;
   auto use = [&](int32_t v) {
     uint32_t& id = index[w.of[v]];
     if (id == UINT32_MAX) {
@@ -205,6 +238,10 @@ Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
       positions.insert(positions.end(),
                        {static_cast<float>(d.x), static_cast<float>(d.y),
                         static_cast<float>(d.z)});
+      if (!rgb.empty()) {
+        colors.insert(colors.end(), rgb.begin() + 3 * w.of[v],
+                      rgb.begin() + 3 * w.of[v] + 3);
+      }
     }
     return id;
   };
@@ -261,10 +298,12 @@ Status MeshJson(const PolygonSoup& soup, const std::vector<int32_t>& owner,
                                  v.size() * sizeof(v[0]))) +
            "\"";
   };
-  *json = "{\"positions\":" + b64(positions) +
-          ",\"triangles\":" + b64(triangles) + ",\"groups\":[" + groups.str() +
-          "],\"open_edges\":" + b64(open) + ",\"open_groups\":[" +
-          open_groups.str() + "]}";
+  *json =
+      "{\"positions\":" + b64(positions) + ",\"triangles\":" + b64(triangles) +
+      ",\"groups\":[" + groups.str() + "],\"open_edges\":" + b64(open) +
+      ",\"open_groups\":[" + open_groups.str() +
+      "],\"colors\":" + (colors.empty() ? std::string("null") : b64(colors)) +
+      "}";
   return OkStatus();
 }
 

@@ -184,6 +184,33 @@ async function settle(page) {
     check(drawn.drawn > 0.1 * drawn.all && drawn.open > 0 && vp.patch === 0 && vp.selected > 50,
           `view draws the mesh and its rims (${drawn.open} px), hole ${filled[0]}'s selected (${vp.selected} px), no patch`);
     check(v.errors.length === 0, `view: no console errors (${v.errors.join(' | ')})`);
+
+    // 3. A PLY's own vertex colours are drawn (an open pyramid, green).
+    const ply = path.join(work, 'green.ply');
+    fs.writeFileSync(ply, ['ply', 'format ascii 1.0', 'element vertex 4',
+                           'property float x', 'property float y', 'property float z',
+                           'property uchar red', 'property uchar green', 'property uchar blue',
+                           'element face 3', 'property list uchar int vertex_indices',
+                           'end_header', '0 0 0 0 255 0', '1 0 0 0 255 0', '0 1 0 0 255 0',
+                           '0.3 0.3 1 0 255 0', '3 0 1 3', '3 1 2 3', '3 2 0 3', ''].join('\n'));
+    const greenPage = path.join(work, 'green.html');
+    check(dotctlJson(['view', ply, '-o', greenPage, '--json']).outcome === 'ok',
+          'dotctl view of a coloured PLY');
+    const g = await openPage(browser, greenPage);
+    const green = await g.page.evaluate(() => {
+      const src = document.querySelector('#view canvas');
+      const c = document.createElement('canvas');
+      c.width = src.width;
+      c.height = src.height;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(src, 0, 0);
+      const d = ctx.getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) n += d[i + 1] > 2 * d[i] + 30 && d[i + 1] > 2 * d[i + 2] + 30;
+      return n;
+    });
+    check(green > 1000, `the PLY's colours are drawn (${green} green px)`);
+    check(g.errors.length === 0, `coloured page: no console errors (${g.errors.join(' | ')})`);
   } finally {
     await browser.close();
   }

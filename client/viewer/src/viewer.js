@@ -33,6 +33,13 @@ function buildMesh(m) {
       (color) => new THREE.MeshStandardMaterial({
         color, roughness: 0.75, metalness: 0.0, side: THREE.DoubleSide,
         polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1}));
+  // The file's own colours on its surface; patches keep theirs.
+  if (m.colors) {
+    geometry.setAttribute('color',
+                          new THREE.BufferAttribute(decode(m.colors, Uint8Array), 3, true));
+    materials[0].color.set(0xffffff);
+    materials[0].vertexColors = true;
+  }
   const groups = new Map();  // hole id -> its draw group
   const patches = new Map();  // hole id -> {center, normal} of its patch
   for (const g of m.groups || []) {
