@@ -29,9 +29,15 @@ constexpr bool kMap = true;
 constexpr bool kMap = true;
 #endif
 
-// Whole pages: the last, partial 2 MiB of a table stays on 4 KiB pages, so
-// no table holds more than it touches.
-size_t Rounded(size_t bytes) { return (bytes + kPage - 1) & ~(kPage - 1); }
+// A table's mapped size. Whole huge pages where that adds at most a
+// quarter (a table of 8 MiB or more always): the whole table faults in
+// 2 MiB at a time. Else whole 4 KiB pages: the partial last 2 MiB stays on
+// small pages, and the table holds no more than it touches.
+size_t Rounded(size_t bytes) {
+  const size_t huge = (bytes + kHuge - 1) & ~(kHuge - 1);
+  if (huge - bytes <= bytes / 4) return huge;
+  return (bytes + kPage - 1) & ~(kPage - 1);
+}
 
 // Freed blocks kept for reuse, up to `limit` bytes in all, oldest first.
 // Few tables live at once, so a short list under a mutex does.

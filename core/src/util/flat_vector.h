@@ -6,9 +6,9 @@
 // the kernel for transparent huge pages on them (madvise; THP "madvise"
 // or "always" grants them), so each whole 2 MiB faults once: in every
 // entry point, with no environment variable. A table's partial last 2 MiB
-// stays on 4 KiB pages, so it holds no more than it touches; SetTableMeter
-// lets a heap meter count these blocks, and SetTableCacheBytes keeps freed
-// ones warm for the next solve.
+// is a huge page too where that adds at most a quarter to the table, else
+// it stays on 4 KiB pages. SetTableMeter lets a heap meter count these
+// blocks, and SetTableCacheBytes keeps freed ones warm for the next solve.
 // FlatVector is the same with resize() leaving trivial elements
 // uninitialized: DP tables are written before they are read, and
 // zero-filling them first costs a page-faulting pass no cancel flag can
