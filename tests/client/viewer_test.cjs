@@ -47,13 +47,14 @@ async function pixels(page) {
     const g = c.getContext('2d');
     g.drawImage(src, 0, 0);
     const d = g.getImageData(0, 0, c.width, c.height).data;
-    const n = {all: c.width * c.height, drawn: 0, patch: 0, selected: 0, open: 0};
+    const n = {all: c.width * c.height, drawn: 0, patch: 0, selected: 0, open: 0, green: 0};
     for (let i = 0; i < d.length; i += 4) {
       const r = d[i], gr = d[i + 1], b = d[i + 2];
       if (Math.abs(r - 244) + Math.abs(gr - 244) + Math.abs(b - 242) > 12) ++n.drawn;
       if (r > gr && r - b > 80 && gr - b > 25) ++n.patch;
       if (b - r > 60 && b > gr) ++n.selected;
       if (r - gr > 100 && Math.abs(gr - b) < 45) ++n.open;
+      if (gr > 2 * r + 30 && gr > 2 * b + 30) ++n.green;  // a file's own colour
     }
     return n;
   });
@@ -197,18 +198,7 @@ async function settle(page) {
     check(dotctlJson(['view', ply, '-o', greenPage, '--json']).outcome === 'ok',
           'dotctl view of a coloured PLY');
     const g = await openPage(browser, greenPage);
-    const green = await g.page.evaluate(() => {
-      const src = document.querySelector('#view canvas');
-      const c = document.createElement('canvas');
-      c.width = src.width;
-      c.height = src.height;
-      const ctx = c.getContext('2d');
-      ctx.drawImage(src, 0, 0);
-      const d = ctx.getImageData(0, 0, c.width, c.height).data;
-      let n = 0;
-      for (let i = 0; i < d.length; i += 4) n += d[i + 1] > 2 * d[i] + 30 && d[i + 1] > 2 * d[i + 2] + 30;
-      return n;
-    });
+    const {green} = await pixels(g.page);
     check(green > 1000, `the PLY's colours are drawn (${green} green px)`);
     check(g.errors.length === 0, `coloured page: no console errors (${g.errors.join(' | ')})`);
   } finally {
