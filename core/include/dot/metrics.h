@@ -79,6 +79,12 @@ MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,
                              const std::vector<Triangle>& triangles,
                              const std::vector<Vec3>& edge_face_normals = {});
 double WeightedTotal(const MetricWeights& w, const MetricValues& costs);
+// WeightedTotal(w, PerTriangleMetrics(vertices, normals, t)), bit for bit,
+// evaluating only the metrics `w` weighs: the solvers' per-candidate cost.
+double WeightedTriangleCost(const MetricWeights& w,
+                            const std::vector<Vec3>& vertices,
+                            const std::vector<Vec3>& normals,
+                            const Triangle& t);
 
 }  // namespace dot
 

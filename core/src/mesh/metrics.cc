@@ -25,22 +25,28 @@ double BendingAngle(const Vec3& n1, const Vec3& n2) {
   return std::acos(std::clamp(Dot(n1, n2), -1.0, 1.0));
 }
 
-MetricValues PerTriangleMetrics(const std::vector<Vec3>& vertices,
-                                const std::vector<Vec3>& normals,
-                                const Triangle& t) {
+namespace {
+
+// The per-triangle metrics; perimeter and shape (three square roots) only
+// when `lengths`, normal deviation only with normals.
+MetricValues TriangleMetrics(const std::vector<Vec3>& vertices,
+                             const std::vector<Vec3>& normals,
+                             const Triangle& t, bool lengths) {
   const Vec3& a = vertices[t[0]];
   const Vec3& b = vertices[t[1]];
   const Vec3& c = vertices[t[2]];
   const Vec3 cross = Cross(b - a, c - a);
   const double twice_area = Norm(cross);
-  const double ab = Distance(a, b), bc = Distance(b, c), ca = Distance(c, a);
   MetricValues m;
   m[Metric::kArea] = 0.5 * twice_area;
-  m[Metric::kPerimeter] = ab + bc + ca;
-  const double sq = ab * ab + bc * bc + ca * ca;
-  m[Metric::kShape] =
-      sq > 0 ? std::max(0.0, 1.0 - 2.0 * std::sqrt(3.0) * twice_area / sq)
-             : 1.0;
+  if (lengths) {
+    const double ab = Distance(a, b), bc = Distance(b, c), ca = Distance(c, a);
+    m[Metric::kPerimeter] = ab + bc + ca;
+    const double sq = ab * ab + bc * bc + ca * ca;
+    m[Metric::kShape] =
+        sq > 0 ? std::max(0.0, 1.0 - 2.0 * std::sqrt(3.0) * twice_area / sq)
+               : 1.0;
+  }
   if (!normals.empty()) {
     const Vec3 n = twice_area > 0 ? (1.0 / twice_area) * cross : Vec3{};
     double dev = 0;
@@ -48,6 +54,26 @@ MetricValues PerTriangleMetrics(const std::vector<Vec3>& vertices,
     m[Metric::kNormalDeviation] = dev;
   }
   return m;
+}
+
+}  // namespace
+
+MetricValues PerTriangleMetrics(const std::vector<Vec3>& vertices,
+                                const std::vector<Vec3>& normals,
+                                const Triangle& t) {
+  return TriangleMetrics(vertices, normals, t, /*lengths=*/true);
+}
+
+double WeightedTriangleCost(const MetricWeights& w,
+                            const std::vector<Vec3>& vertices,
+                            const std::vector<Vec3>& normals,
+                            const Triangle& t) {
+  static const std::vector<Vec3> kNoNormals;
+  const bool lengths = w[Metric::kPerimeter] != 0 || w[Metric::kShape] != 0;
+  return WeightedTotal(
+      w, TriangleMetrics(
+             vertices, w[Metric::kNormalDeviation] != 0 ? normals : kNoNormals,
+             t, lengths));
 }
 
 MetricValues EvaluateMetrics(const std::vector<Vec3>& vertices,

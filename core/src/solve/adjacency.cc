@@ -2,56 +2,68 @@
 #include "solve/adjacency.h"
 
 #include <algorithm>
-#include <limits>
+#include <string>
 
 #include "util/run_control.h"
-#include "util/short_sort.h"
 
 namespace dot {
 namespace {
 
-// An edge incidence is a 4-byte record 4 * triangle + slot; its edge is
-// looked up in the triangle: slot 0 is [a, b], 1 is [b, c], 2 is [a, c].
-struct EdgeOf {
-  const std::vector<Triangle>& triangles;
-  std::pair<int32_t, int32_t> operator()(uint32_t record) const {
-    const Triangle& t = triangles[record >> 2];
-    switch (record & 3) {
-      case 0:
-        return {t[0], t[1]};
-      case 1:
-        return {t[1], t[2]};
-      default:
-        return {t[0], t[2]};
-    }
-  }
-};
-
-// Orders every edge's lists by the triangles' third vertex, so the dynamic
-// programs (and their tie-breaking) depend only on the candidate set, not on
-// the order a Delaunay backend happened to list it in.
-Status CanonicalOrder(const std::vector<Triangle>& triangles, RunTicker& ticker,
-                      Adjacency* adj) {
-  for (int32_t e = 0; e < adj->edge_count(); ++e) {
+// Checks that every candidate is three ascending positions below n, and
+// finds whether the list is already in lexicographic order.
+Status CheckCandidates(int32_t n, const std::vector<Triangle>& triangles,
+                       const Control& control, bool* sorted) {
+  *sorted = true;
+  RunTicker ticker(control, Stage::kAdjacency);
+  for (size_t t = 0; t < triangles.size(); ++t) {
     if (!ticker.Tick()) return ticker.status();
-    // Keys are distinct within a list: the third vertices of distinct
-    // triangles on one edge.
-    SortShortList(adj->inner.data() + adj->inner_begin[e],
-                  adj->inner.data() + adj->inner_begin[e + 1],
-                  [&](int32_t a, int32_t b) {
-                    return triangles[a][1] < triangles[b][1];
-                  });
-    auto outer_third = [&](int32_t slot) {
-      const Triangle& t = triangles[slot >> 1];
-      return (slot & 1) == 0 ? t[2] : t[0];
-    };
-    SortShortList(
-        adj->outer.data() + adj->outer_begin[e],
-        adj->outer.data() + adj->outer_begin[e + 1],
-        [&](int32_t a, int32_t b) { return outer_third(a) < outer_third(b); });
+    const Triangle& tri = triangles[t];
+    if (!(0 <= tri[0] && tri[0] < tri[1] && tri[1] < tri[2] && tri[2] < n)) {
+      return MakeStatus(
+          StatusCode::kInternal,
+          "candidate triangle " + std::to_string(t) + " (" +
+              std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
+              std::to_string(tri[2]) +
+              ") is not three ascending positions below " + std::to_string(n));
+    }
+    if (t > 0 && tri < triangles[t - 1]) *sorted = false;
   }
   return OkStatus();
 }
+
+// Sorts the candidates lexicographically: a least-significant-digit radix
+// sort, one stable counting pass per corner, linear in triangles + n.
+Status SortLexicographically(int32_t n, RunTicker& ticker,
+                             std::vector<Triangle>* triangles) {
+  std::vector<Triangle>& tris = *triangles;
+  FlatVector<Triangle> other(tris.size());
+  std::vector<int32_t> start(n + 1);
+  auto pass = [&](int corner, const Triangle* from, Triangle* to) {
+    std::fill(start.begin(), start.end(), 0);
+    for (size_t t = 0; t < tris.size(); ++t) ++start[from[t][corner] + 1];
+    for (int32_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    for (size_t t = 0; t < tris.size(); ++t) {
+      if (!ticker.Tick()) return false;
+      to[start[from[t][corner]]++] = from[t];
+    }
+    return true;
+  };
+  if (!pass(2, tris.data(), other.data()) ||
+      !pass(1, other.data(), tris.data()) ||
+      !pass(0, tris.data(), other.data())) {
+    return ticker.status();
+  }
+  std::copy(other.begin(), other.end(), tris.begin());
+  return OkStatus();
+}
+
+// One incidence of an edge [lo, hi] in a candidate: its far end (lo is the
+// bucket it sits in) and 4 * triangle + slot (0: [a, b], 1: [b, c],
+// 2: [a, c]).
+struct Incidence {
+  int32_t hi;
+  uint32_t ref;
+};
 
 }  // namespace
 
@@ -63,7 +75,7 @@ int64_t Adjacency::Bytes() const {
          bytes(outer_begin) + bytes(outer) + bytes(tri_edges);
 }
 
-Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
+Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
                       const Control& control, Adjacency* out) {
   if (n > kMaxVertices) {
     return MakeStatus(StatusCode::kResourceExhausted,
@@ -71,86 +83,117 @@ Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
                           " vertices; the limit is " +
                           std::to_string(kMaxVertices));
   }
+  std::vector<Triangle>& triangles = *candidates;
   if (triangles.size() >= (size_t{1} << 29)) {
     return MakeStatus(
         StatusCode::kResourceExhausted,
         "too many candidate triangles: " + std::to_string(triangles.size()));
   }
   RunTicker ticker(control, Stage::kAdjacency);
-  const EdgeOf edge_of{triangles};
-  // Incidences sorted by (span, lo), stable in (triangle, slot): two
-  // counting passes, linear and interruptible, over 4-byte records (the
-  // edge is looked up, not stored, to keep the buffers small: page faults
-  // dominate here).
-  const size_t records = 3 * triangles.size();
+  bool sorted = false;
+  Status s = CheckCandidates(n, triangles, control, &sorted);
+  if (s.ok() && !sorted) s = SortLexicographically(n, ticker, &triangles);
+  if (!s.ok()) return s;
+
+  // Every incidence into the bucket of its edge's low end, in triangle
+  // order: lexicographic order makes each edge's lists canonical below.
+  const auto count = static_cast<uint32_t>(triangles.size());
   std::vector<int32_t> start(n + 1);
-  // Every pass ticks: the all-triangles space brings millions of records.
   for (const Triangle& t : triangles) {
-    if (!ticker.Tick()) return ticker.status();
-    ++start[t[0] + 1];
+    start[t[0] + 1] += 2;
     ++start[t[1] + 1];
-    ++start[t[0] + 1];
   }
-  for (int32_t d = 0; d < n; ++d) start[d + 1] += start[d];
-  FlatVector<uint32_t> by_lo(records), by_span(records);
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
-    if (!ticker.Tick()) return ticker.status();
-    const Triangle& tri = triangles[t];
-    by_lo[start[tri[0]]++] = 4 * t;
-    by_lo[start[tri[1]]++] = 4 * t + 1;
-    by_lo[start[tri[0]]++] = 4 * t + 2;
+  for (int32_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  FlatVector<Incidence> by_lo(3 * size_t{count});
+  {
+    std::vector<int32_t> next(start.begin(), start.end() - 1);
+    for (uint32_t t = 0; t < count; ++t) {
+      if (!ticker.Tick()) return ticker.status();
+      const Triangle& tri = triangles[t];
+      by_lo[next[tri[0]]++] = {tri[1], 4 * t};
+      by_lo[next[tri[1]]++] = {tri[2], 4 * t + 1};
+      by_lo[next[tri[0]]++] = {tri[2], 4 * t + 2};
+    }
   }
-  std::fill(start.begin(), start.end(), 0);
-  for (uint32_t r : by_lo) {
-    if (!ticker.Tick()) return ticker.status();
-    const auto [lo, hi] = edge_of(r);
-    ++start[hi - lo + 1];
-  }
-  for (int32_t d = 0; d < n; ++d) start[d + 1] += start[d];
-  for (uint32_t r : by_lo) {
-    if (!ticker.Tick()) return ticker.status();
-    const auto [lo, hi] = edge_of(r);
-    by_span[start[hi - lo]++] = r;
-  }
-  by_lo = {};
 
   Adjacency& adj = *out;
   adj = Adjacency{};
   adj.n = n;
-  adj.tri_edges.resize(3 * triangles.size());
-  adj.inner.reserve(triangles.size());
-  adj.outer.reserve(2 * triangles.size());
+  adj.tri_edges.resize(3 * size_t{count});
+  adj.inner.resize(count);
+  adj.outer.resize(2 * size_t{count});
+  // Euler's formula bounds a tetrahedralization's edges by
+  // faces / 2 + 1.5 vertices; the all-triangles space has far fewer.
+  const size_t edges_guess = count / 2 + 2 * static_cast<size_t>(n);
+  adj.edge_lo.reserve(edges_guess);
+  adj.edge_hi.reserve(edges_guess);
+  adj.inner_begin.reserve(edges_guess + 1);
+  adj.outer_begin.reserve(edges_guess + 1);
   std::vector<bool> has_polygon_edge(n, false);
-  std::pair<int32_t, int32_t> prev_edge{-1, -1};
-  for (uint32_t r : by_span) {
-    if (!ticker.Tick()) return ticker.status();
-    const std::pair<int32_t, int32_t> edge = edge_of(r);
-    if (edge != prev_edge) {
-      prev_edge = edge;
-      const auto [lo, hi] = edge;
+  // Per far end hi of the current bucket: its index among the bucket's
+  // distinct ends (-1: none yet), then its edge's write cursors.
+  std::vector<int32_t> end_index(n, -1);
+  std::vector<int32_t> ends, inner_next, outer_next, edge_of_end;
+  int32_t inner_size = 0, outer_size = 0;
+  // Buckets from the highest low end down, ends ascending within: every
+  // edge [i, j] comes after its children [i, k] and [k, j], i < k < j.
+  for (int32_t lo = n - 1; lo >= 0; --lo) {
+    const Incidence* first = by_lo.data() + start[lo];
+    const Incidence* last = by_lo.data() + start[lo + 1];
+    ends.clear();
+    for (const Incidence* r = first; r != last; ++r) {
+      if (!ticker.Tick()) return ticker.status();
+      if (end_index[r->hi] < 0) {
+        end_index[r->hi] = 0;
+        ends.push_back(r->hi);
+      }
+    }
+    std::sort(ends.begin(), ends.end());
+    const size_t m = ends.size();
+    inner_next.assign(m, 0);
+    outer_next.assign(m, 0);
+    edge_of_end.resize(m);
+    for (size_t k = 0; k < m; ++k) end_index[ends[k]] = static_cast<int32_t>(k);
+    for (const Incidence* r = first; r != last; ++r) {
+      ++((r->ref & 3) == 2 ? inner_next : outer_next)[end_index[r->hi]];
+    }
+    for (size_t k = 0; k < m; ++k) {
+      const int32_t hi = ends[k];
+      const auto e = static_cast<int32_t>(adj.edge_lo.size());
+      edge_of_end[k] = e;
       adj.edge_lo.push_back(lo);
       adj.edge_hi.push_back(hi);
-      adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));
-      adj.outer_begin.push_back(static_cast<int32_t>(adj.outer.size()));
+      adj.inner_begin.push_back(inner_size);
+      adj.outer_begin.push_back(outer_size);
+      // The counts become the lists' write cursors.
+      const int32_t inner_count = inner_next[k], outer_count = outer_next[k];
+      inner_next[k] = inner_size;
+      outer_next[k] = outer_size;
+      inner_size += inner_count;
+      outer_size += outer_count;
       if (hi - lo == 1) has_polygon_edge[lo] = true;
       if (lo == 0 && hi == n - 1) {
-        adj.root = static_cast<int32_t>(adj.edge_lo.size()) - 1;
+        adj.root = e;
         has_polygon_edge[n - 1] = true;
       }
     }
-    const auto t = static_cast<int32_t>(r >> 2);
-    const int slot = static_cast<int>(r & 3);
-    adj.tri_edges[3 * t + slot] = static_cast<int32_t>(adj.edge_lo.size()) - 1;
-    if (slot == 2) {
-      adj.inner.push_back(t);
-    } else {
-      adj.outer.push_back(2 * t + slot);
+    // Stable: each list keeps triangle order, which is the order of the
+    // triangles' third vertices (inner: b of (lo, b, hi); outer: a of
+    // (a, lo, hi) before c of (lo, hi, c)).
+    for (const Incidence* r = first; r != last; ++r) {
+      const int32_t k = end_index[r->hi];
+      const uint32_t t = r->ref >> 2, slot = r->ref & 3;
+      adj.tri_edges[r->ref - t] = edge_of_end[k];
+      if (slot == 2) {
+        adj.inner[inner_next[k]++] = static_cast<int32_t>(t);
+      } else {
+        adj.outer[outer_next[k]++] = static_cast<int32_t>(2 * t + slot);
+      }
     }
+    for (int32_t hi : ends) end_index[hi] = -1;
   }
-  adj.inner_begin.push_back(static_cast<int32_t>(adj.inner.size()));
-  adj.outer_begin.push_back(static_cast<int32_t>(adj.outer.size()));
-  const Status ordered = CanonicalOrder(triangles, ticker, &adj);
-  if (!ordered.ok()) return ordered;
+  adj.inner_begin.push_back(inner_size);
+  adj.outer_begin.push_back(outer_size);
   for (int32_t i = 0; i < n; ++i) {
     if (!has_polygon_edge[i]) adj.missing_polygon_edges.push_back(i);
   }

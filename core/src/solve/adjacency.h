@@ -6,8 +6,14 @@
 // (i < j) closed by the edge [i, j], so each candidate edge needs only one
 // side: its "inner" triangles (i, k, j) with i < k < j. A triangle (a, b, c),
 // a < b < c, is inner to its long edge [a, c] and "outer" to its two short
-// edges [a, b] (slot 0) and [b, c] (slot 1). Edges are numbered by increasing
-// span j - i, so a single forward pass solves children before parents.
+// edges [a, b] (slot 0) and [b, c] (slot 1). Edges are numbered by
+// decreasing low end, then increasing high end, so every edge [i, j] comes
+// after its children [i, k] and [k, j]: one forward pass solves children
+// before parents, and the root [0, n-1] is the last edge.
+//
+// Each edge's lists are in a canonical order, by the triangles' third
+// vertex, so the dynamic programs (and their tie-breaking) depend only on
+// the candidate set, not on the order a Delaunay backend listed it in.
 #ifndef DOT_CORE_SOLVE_ADJACENCY_H_
 #define DOT_CORE_SOLVE_ADJACENCY_H_
 
@@ -44,9 +50,14 @@ struct Adjacency {
   int64_t Bytes() const;
 };
 
-// `triangles` are position triples sorted ascending within each triple.
-// kResourceExhausted above kMaxVertices or 2^29 triangles.
-Status BuildAdjacency(int32_t n, const std::vector<Triangle>& triangles,
+// Sorts `candidates` (position triples, ascending within each) into
+// lexicographic order in place, in linear time, and builds their adjacency:
+// the triangle ids of `out` index the sorted list, so per-triangle weights
+// and normals are computed after. Two passes over the records, no search:
+// lexicographic order is what makes each list canonical.
+// kResourceExhausted above kMaxVertices or 2^29 triangles; kInternal for a
+// triple that is not three ascending positions below n.
+Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
                       const Control& control, Adjacency* out);
 
 }  // namespace dot

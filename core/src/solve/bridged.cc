@@ -282,7 +282,7 @@ Status SolveBridged(const std::vector<std::vector<int32_t>>& members,
                               std::to_string(memory_budget >> 20) + " MiB");
       }
       Adjacency adj;
-      Status s = BuildAdjacency(m, tris, control, &adj);
+      Status s = BuildAdjacency(m, &tris, control, &adj);
       if (!s.ok()) return s;
       std::vector<double> w;
       std::vector<Vec3> unit;

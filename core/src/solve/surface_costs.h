@@ -26,8 +26,7 @@ struct SurfaceCosts {
     return bending.dihedral != 0 || bending.squared_dihedral != 0;
   }
   double Weight(const Triangle& oriented) const {
-    return WeightedTotal(weights,
-                         PerTriangleMetrics(points, normals, oriented));
+    return WeightedTriangleCost(weights, points, normals, oriented);
   }
   Vec3 Normal(const Triangle& oriented) const {
     return UnitNormal(points, oriented);

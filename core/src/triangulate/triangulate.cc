@@ -59,17 +59,17 @@ Status BuildSpaceTables(bool unit_normals, const Options& options,
       CheckBudget(static_cast<int64_t>(sp->triangles.size()), bi, options, st);
   if (!s.ok()) return s;
   Report(control, Stage::kAdjacency, 0);
-  if (unit_normals) {
-    const std::vector<Vec3> points = sp->loop.Points();
-    sp->unit_normals.reserve(sp->triangles.size());
-    RunTicker ticker(control, Stage::kAdjacency);
-    for (const Triangle& t : sp->triangles) {
-      if (!ticker.Tick()) return ticker.status();
-      sp->unit_normals.push_back(UnitNormal(points, t));
-    }
+  // Sorts the candidates: normals are indexed by the sorted list.
+  s = BuildAdjacency(sp->loop.size(), &sp->triangles, control, &sp->adjacency);
+  if (!s.ok() || !unit_normals) return s;
+  const std::vector<Vec3> points = sp->loop.Points();
+  sp->unit_normals.reserve(sp->triangles.size());
+  RunTicker ticker(control, Stage::kAdjacency);
+  for (const Triangle& t : sp->triangles) {
+    if (!ticker.Tick()) return ticker.status();
+    sp->unit_normals.push_back(UnitNormal(points, t));
   }
-  return BuildAdjacency(sp->loop.size(), sp->triangles, control,
-                        &sp->adjacency);
+  return OkStatus();
 }
 
 // The weight-dependent half: per-triangle weights, the DP and tiling; on
@@ -96,8 +96,8 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
   RunTicker ticker(control, Stage::kAdjacency);
   for (size_t t = 0; t < count; ++t) {
     if (!ticker.Tick()) return ticker.status();
-    w.push_back(WeightedTotal(
-        weights, PerTriangleMetrics(points, normals, sp.triangles[t])));
+    w.push_back(
+        WeightedTriangleCost(weights, points, normals, sp.triangles[t]));
   }
   st.search_triangles = static_cast<int64_t>(count);
   st.edges = adj.edge_count();
