@@ -8,6 +8,27 @@
 // progress.
 #include "search_space/delaunay_cgal.h"
 
+// The cells and vertices of a sequential tetrahedralization live in a
+// BlockArena (huge pages, freed all at once): CGAL's containers allocate
+// through CGAL_ALLOCATOR, which here gives ArenaAllocator to the types
+// wrapped in InArena below and std::allocator, CGAL's default, to every
+// other type, so no CGAL type changes for the rest of the program.
+#include <memory>
+#include <type_traits>
+
+#include "util/block_arena.h"
+namespace dot {
+template <typename T>
+struct UsesBlockArena : std::false_type {};
+template <typename T>
+using CgalAllocator = std::conditional_t<UsesBlockArena<T>::value,
+                                         ArenaAllocator<T>, std::allocator<T>>;
+}  // namespace dot
+#ifdef CGAL_ALLOCATOR
+#error "a CGAL header came first: CGAL_ALLOCATOR must be defined before any"
+#endif
+#define CGAL_ALLOCATOR(T) ::dot::CgalAllocator<T>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -32,10 +53,29 @@
 namespace dot {
 namespace {
 
+// A vertex or cell base whose objects CGAL allocates in the BlockArena.
+template <typename Base>
+struct InArena : Base {
+  using Base::Base;
+  template <typename Tds>
+  struct Rebind_TDS {
+    using Other = InArena<typename Base::template Rebind_TDS<Tds>::Other>;
+  };
+};
+
+}  // namespace
+
+template <typename Base>
+struct UsesBlockArena<InArena<Base>> : std::true_type {};
+
+namespace {
+
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int32_t, Kernel>;
 using SequentialDelaunay = CGAL::Delaunay_triangulation_3<
-    Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
+    Kernel,
+    CGAL::Triangulation_data_structure_3<
+        InArena<VertexBase>, InArena<CGAL::Triangulation_ds_cell_base_3<>>>>;
 using ParallelDelaunay = CGAL::Delaunay_triangulation_3<
     Kernel, CGAL::Triangulation_data_structure_3<
                 VertexBase, CGAL::Delaunay_triangulation_cell_base_3<Kernel>,
@@ -249,6 +289,7 @@ Status Faces(const std::vector<Vec3>& points, const Options& options,
   RunTicker ticker(control, Stage::kDelaunay);
   const int threads = ThreadsFor(points.size(), options);
   if (threads <= 1) {
+    BlockArena arena;  // outlives dt, whose cells it holds
     SequentialDelaunay dt;
     size_t next = 0;
     SequentialDelaunay::Vertex_handle last;

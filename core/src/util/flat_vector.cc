@@ -14,21 +14,6 @@ constexpr size_t kHuge = size_t{2} << 20;
 constexpr size_t kPage = 4096;
 std::atomic<TableMeter> meter{nullptr};
 
-// Sanitizers watch the heap (ASan its bounds, MSan what is initialized,
-// TSan its races): their builds keep every table there.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kMap = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
-    __has_feature(thread_sanitizer)
-constexpr bool kMap = false;
-#else
-constexpr bool kMap = true;
-#endif
-#else
-constexpr bool kMap = true;
-#endif
-
 // A table's mapped size. Whole huge pages where that adds at most a
 // quarter (a table of 8 MiB or more always): the whole table faults in
 // 2 MiB at a time. Else whole 4 KiB pages: the partial last 2 MiB stays on
@@ -125,7 +110,7 @@ void* Map(size_t size) {
 }  // namespace
 
 void* AllocateTable(size_t bytes) {
-  if (!kMap || bytes < kTableMapBytes) return ::operator new(bytes);
+  if (!kMapTables || bytes < kTableMapBytes) return ::operator new(bytes);
   if (bytes > SIZE_MAX - kHuge) throw std::bad_alloc();
   const size_t size = Rounded(bytes);
   void* p = TheCache().Take(size);
@@ -138,7 +123,7 @@ void* AllocateTable(size_t bytes) {
 
 void FreeTable(void* p, size_t bytes) noexcept {
   if (p == nullptr) return;
-  if (!kMap || bytes < kTableMapBytes) {
+  if (!kMapTables || bytes < kTableMapBytes) {
     ::operator delete(p);
     return;
   }

@@ -29,6 +29,20 @@ namespace dot {
 
 // Blocks from this size on are mapped; smaller ones come from operator new.
 inline constexpr size_t kTableMapBytes = size_t{2} << 20;
+// Sanitizers watch the heap (ASan its bounds, MSan what is initialized,
+// TSan its races): their builds keep every table there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kMapTables = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer) || \
+    __has_feature(thread_sanitizer)
+inline constexpr bool kMapTables = false;
+#else
+inline constexpr bool kMapTables = true;
+#endif
+#else
+inline constexpr bool kMapTables = true;
+#endif
 // A block for a table: from operator new below kTableMapBytes (and in
 // sanitizer builds, which watch the heap), else mapped on huge pages.
 // Throws std::bad_alloc when the kernel refuses. Free with the same size.
