@@ -81,8 +81,9 @@ void BM_DynamicProgram(benchmark::State& state, bool bi) {
   }
   for (auto _ : state) {
     DpSolution sol;
-    benchmark::DoNotOptimize(bi ? SolveDot2(adj, w, unit, {}, {0, 1}, {}, &sol)
-                                : SolveDot1(adj, w, {}, &sol));
+    benchmark::DoNotOptimize(
+        bi ? SolveDot2(adj, w, CandidateNormals(unit), {}, {0, 1}, {}, &sol)
+           : SolveDot1(adj, w, {}, &sol));
   }
 }
 BENCHMARK_CAPTURE(BM_DynamicProgram, dot1, false)

@@ -285,14 +285,10 @@ Status SolveBridged(const std::vector<std::vector<int32_t>>& members,
       Status s = BuildAdjacency(m, &tris, control, &adj);
       if (!s.ok()) return s;
       std::vector<double> w;
-      std::vector<Vec3> unit;
-      for (const Triangle& t : tris) {
-        w.push_back(at.Weight(t));
-        if (bi) unit.push_back(at.Normal(t));
-      }
+      for (const Triangle& t : tris) w.push_back(at.Weight(t));
       DpSolution sol;
-      s = bi ? SolveDot2(adj, w, unit, at.edge_normals, at.bending, control,
-                         &sol)
+      s = bi ? SolveDot2(adj, w, CandidateNormals(at.points, tris),
+                         at.edge_normals, at.bending, control, &sol)
              : SolveDot1(adj, w, control, &sol);
       out->states += sol.states;
       out->table_bytes =

@@ -44,7 +44,7 @@ double MinBending(BendingWeights w) {
 }
 
 Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
-                 const std::vector<Vec3>& unit_normals,
+                 const CandidateNormals& unit_normals,
                  const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -109,7 +109,7 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
     }
     for (int32_t i = ob; i < oe; ++i) {
       const int32_t slot = adj.outer[i];
-      const Vec3& nt = unit_normals[slot / 2];
+      const Vec3 nt = unit_normals[slot / 2];
       double best = kInf;
       int32_t best_u = -1;
       for (const InnerCandidate& c : cand) {
@@ -128,8 +128,7 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   }
   out->states = static_cast<int64_t>(adj.outer.size()) + 1;
   out->table_bytes =
-      static_cast<int64_t>(slots * (sizeof(double) + sizeof(int32_t)) +
-                           unit_normals.size() * sizeof(Vec3));
+      static_cast<int64_t>(slots * (sizeof(double) + sizeof(int32_t)));
   out->dp_ms = MsSince(t0);
   if (root_arg < 0) return MakeStatus(StatusCode::kNoTriangulation, "");
 

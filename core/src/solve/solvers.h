@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dot/control.h"
+#include "dot/metrics.h"
 #include "dot/problem.h"
 #include "dot/status.h"
 #include "solve/adjacency.h"
@@ -42,11 +43,32 @@ struct BendingWeights {
 // Smallest value of dihedral * theta + squared_dihedral * theta^2 over theta
 // in [0, pi]: a lower bound on any bending term, for pruning.
 double MinBending(BendingWeights w);
+// The candidates' unit normals: kept (a space prepared for re-solves keeps
+// them), or computed from the points whenever one is needed (three times
+// per candidate; a solve that keeps nothing saves 24 bytes per candidate,
+// a quarter of DOT2's peak memory). The same values either way.
+class CandidateNormals {
+ public:
+  explicit CandidateNormals(const std::vector<Vec3>& kept) : kept_(&kept) {}
+  CandidateNormals(const std::vector<Vec3>& points,
+                   const std::vector<Triangle>& triangles)
+      : points_(&points), triangles_(&triangles) {}
+  Vec3 operator[](int32_t t) const {
+    return kept_ != nullptr ? (*kept_)[t]
+                            : UnitNormal(*points_, (*triangles_)[t]);
+  }
+
+ private:
+  const std::vector<Vec3>* kept_ = nullptr;
+  const std::vector<Vec3>* points_ = nullptr;
+  const std::vector<Triangle>* triangles_ = nullptr;
+};
+
 // `edge_normals`: empty, or per polygon position i the unit normal of the
 // surface face across the polygon edge i -> i+1 (zero: none); the bending
 // between it and the patch triangle on that edge is priced too.
 Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
-                 const std::vector<Vec3>& unit_normals,
+                 const CandidateNormals& unit_normals,
                  const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out);
 

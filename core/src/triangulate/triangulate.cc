@@ -51,7 +51,8 @@ void Report(const Control& control, Stage stage, double fraction) {
 }
 
 // The weight-independent half of a solve: adjacency, and the candidates'
-// unit normals when `unit_normals` (DOT2, or a space kept for re-solves).
+// unit normals when `unit_normals` (a space kept for re-solves; DOT2
+// computes them as it goes otherwise).
 Status BuildSpaceTables(bool unit_normals, const Options& options,
                         const Control& control, bool bi, PreparedSpace* sp,
                         Stats* st) {
@@ -108,8 +109,11 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
   Report(control, Stage::kDynamicProgram, 0);
   DpSolution sol;
   if (bi) {
+    const CandidateNormals unit_normals =
+        sp.unit_normals.empty() ? CandidateNormals(points, sp.triangles)
+                                : CandidateNormals(sp.unit_normals);
     s = SolveDot2(
-        adj, w, sp.unit_normals, loop.EdgeNormalsByPosition(),
+        adj, w, unit_normals, loop.EdgeNormalsByPosition(),
         {weights[Metric::kDihedral], weights[Metric::kSquaredDihedral]},
         control, &sol);
   } else {
@@ -211,7 +215,7 @@ Status PrepareAll(const MetricWeights& weights, const Chords& forbidden,
   if (!s.ok()) return s;
   t0 = Clock::now();
   DropForbiddenEdges(sp->loop, forbidden, &sp->triangles);
-  s = BuildSpaceTables(bi, options, control, bi, sp, stats);
+  s = BuildSpaceTables(false, options, control, bi, sp, stats);
   stats->adjacency_ms += MsSince(t0);
   return s;
 }
@@ -381,7 +385,7 @@ Result Triangulate(const Problem& problem, const Options& options,
       } else {
         auto fresh = std::make_shared<PreparedSpace>();
         fresh->loop = loop;
-        s = PrepareDelaunay(fit, r.planar, bi || cache != nullptr, bi,
+        s = PrepareDelaunay(fit, r.planar, cache != nullptr, bi,
                             problem.forbidden_edges, options, control,
                             fresh.get(), &r.stats);
         if (s.ok() && cache) cache->Insert(key, fresh, fresh->Bytes());

@@ -35,8 +35,8 @@ std::vector<Triangle> SolveOver(const std::vector<Vec3>& loop,
     unit.push_back(UnitNormal(loop, f));
   }
   DpSolution sol;
-  const Status s = bi ? SolveDot2(adj, std::vector<double>(w.size(), 0), unit,
-                                  {}, {0, 1}, {}, &sol)
+  const Status s = bi ? SolveDot2(adj, std::vector<double>(w.size(), 0),
+                                  CandidateNormals(unit), {}, {0, 1}, {}, &sol)
                       : SolveDot1(adj, w, {}, &sol);
   EXPECT_TRUE(s.ok()) << s.message;
   std::vector<Triangle> out;
