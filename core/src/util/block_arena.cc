@@ -8,7 +8,6 @@
 namespace dot {
 namespace {
 
-constexpr size_t kFirstChunk = size_t{64} << 10;
 constexpr size_t kLargestChunk = size_t{32} << 20;
 constexpr size_t kAlign = alignof(std::max_align_t);
 
@@ -30,14 +29,18 @@ BlockArena* BlockArena::Current() { return current; }
 void* BlockArena::Allocate(size_t bytes) {
   bytes = (bytes + kAlign - 1) & ~(kAlign - 1);
   if (chunks_.empty() || chunks_.back().size - used_ < bytes) {
-    // 64 KiB, then 2 MiB (a whole huge page), then doubling.
-    size_t size = chunks_.empty() ? kFirstChunk
-                  : chunks_.back().size < kTableMapBytes
-                      ? kTableMapBytes
-                      : std::min(2 * chunks_.back().size, kLargestChunk);
-    if (size < bytes)
-      size = (bytes + kTableMapBytes - 1) & ~(kTableMapBytes - 1);
-    chunks_.reserve(chunks_.size() + 1);  // no throw after the table is held
+    // Until the arena holds 2 MiB, each block is a heap allocation of its
+    // own size: a small tetrahedralization costs what it did without the
+    // arena. From then on, chunks of 2 MiB and more, doubling, on huge
+    // pages.
+    size_t size = bytes;
+    if (reserved_ + bytes > kTableMapBytes) {
+      const size_t last = chunks_.empty() ? 0 : chunks_.back().size;
+      size = std::max(kTableMapBytes, std::min(2 * last, kLargestChunk));
+      size =
+          std::max(size, (bytes + kTableMapBytes - 1) & ~(kTableMapBytes - 1));
+    }
+    chunks_.reserve(chunks_.size() + 1);  // no throw after the block is held
     chunks_.push_back({static_cast<char*>(AllocateTable(size)), size});
     used_ = 0;
     reserved_ += size;
