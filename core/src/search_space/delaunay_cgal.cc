@@ -18,11 +18,14 @@
 
 #include "util/block_arena.h"
 namespace dot {
+namespace {
 template <typename T>
 struct UsesBlockArena : std::false_type {};
 template <typename T>
 using CgalAllocator = std::conditional_t<UsesBlockArena<T>::value,
                                          ArenaAllocator<T>, std::allocator<T>>;
+static_assert(std::is_same_v<CgalAllocator<int>, std::allocator<int>>);
+}  // namespace
 }  // namespace dot
 #ifdef CGAL_ALLOCATOR
 #error "a CGAL header came first: CGAL_ALLOCATOR must be defined before any"
@@ -63,12 +66,8 @@ struct InArena : Base {
   };
 };
 
-}  // namespace
-
 template <typename Base>
 struct UsesBlockArena<InArena<Base>> : std::true_type {};
-
-namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int32_t, Kernel>;
@@ -289,7 +288,8 @@ Status Faces(const std::vector<Vec3>& points, const Options& options,
   RunTicker ticker(control, Stage::kDelaunay);
   const int threads = ThreadsFor(points.size(), options);
   if (threads <= 1) {
-    BlockArena arena;  // outlives dt, whose cells it holds
+    BlockArena arena;  // outlives dt, whose cells it holds; dt is never
+                       // copied or moved out of this scope
     SequentialDelaunay dt;
     size_t next = 0;
     SequentialDelaunay::Vertex_handle last;

@@ -40,7 +40,10 @@ Status SortLexicographically(int32_t n, RunTicker& ticker,
   std::vector<int32_t> start(n + 1);
   auto pass = [&](int corner, const Triangle* from, Triangle* to) {
     std::fill(start.begin(), start.end(), 0);
-    for (size_t t = 0; t < tris.size(); ++t) ++start[from[t][corner] + 1];
+    for (size_t t = 0; t < tris.size(); ++t) {
+      if (!ticker.Tick()) return false;
+      ++start[from[t][corner] + 1];
+    }
     for (int32_t v = 0; v < n; ++v) start[v + 1] += start[v];
     for (size_t t = 0; t < tris.size(); ++t) {
       if (!ticker.Tick()) return false;
@@ -53,7 +56,10 @@ Status SortLexicographically(int32_t n, RunTicker& ticker,
       !pass(0, tris.data(), other.data())) {
     return ticker.status();
   }
-  std::copy(other.begin(), other.end(), tris.begin());
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (!ticker.Tick()) return ticker.status();
+    tris[t] = other[t];
+  }
   return OkStatus();
 }
 
@@ -100,6 +106,7 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
   const auto count = static_cast<uint32_t>(triangles.size());
   std::vector<int32_t> start(n + 1);
   for (const Triangle& t : triangles) {
+    if (!ticker.Tick()) return ticker.status();
     start[t[0] + 1] += 2;
     ++start[t[1] + 1];
   }
@@ -123,8 +130,10 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
   adj.inner.resize(count);
   adj.outer.resize(2 * size_t{count});
   // Euler's formula bounds a tetrahedralization's edges by
-  // faces / 2 + 1.5 vertices; the all-triangles space has far fewer.
-  const size_t edges_guess = count / 2 + 2 * static_cast<size_t>(n);
+  // faces / 2 + 1.5 vertices; no space has more than n (n - 1) / 2.
+  const size_t edges_guess =
+      std::min(count / 2 + 2 * static_cast<size_t>(n),
+               static_cast<size_t>(n) * static_cast<size_t>(n - 1) / 2);
   adj.edge_lo.reserve(edges_guess);
   adj.edge_hi.reserve(edges_guess);
   adj.inner_begin.reserve(edges_guess + 1);
@@ -183,7 +192,7 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
     for (const Incidence* r = first; r != last; ++r) {
       const int32_t k = end_index[r->hi];
       const uint32_t t = r->ref >> 2, slot = r->ref & 3;
-      adj.tri_edges[r->ref - t] = edge_of_end[k];
+      adj.tri_edges[3 * t + slot] = edge_of_end[k];
       if (slot == 2) {
         adj.inner[inner_next[k]++] = static_cast<int32_t>(t);
       } else {
@@ -201,9 +210,10 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
 }
 
 int64_t EstimateTableBytes(int64_t triangles, bool bi_triangle) {
-  // Per candidate: the triangle, its weight, three edge ids, the sort
-  // records (3 x 16 bytes, transient), adjacency lists; per edge (at most
-  // 1.5 per triangle in practice, 3 at worst) offsets, ends and DP entries.
+  // Per candidate: the triangle, its weight, three edge ids, the transient
+  // sort copy and incidence records (12 + 3 x 8 bytes; 48 counted),
+  // adjacency lists; per edge (at most 1.5 per triangle in practice, 3 at
+  // worst) offsets, ends and DP entries.
   int64_t per_triangle = 12 + 8 + 12 + 48 + 12 + 3 * (4 * 4 + 12);
   if (bi_triangle) per_triangle += 24 + 2 * (8 + 4) + 36;
   return triangles * per_triangle;

@@ -29,7 +29,7 @@
 namespace dot {
 
 // The largest polygon the adjacency (and so every solver) accepts. It was
-// the reach of 24-bit positions in packed sort keys; the 4-byte records that
+// the reach of 24-bit positions in packed sort keys; the records that
 // replaced them need no such bound, but the limit is kept as the library's
 // stated maximum (the default memory budget refuses polygons far smaller).
 inline constexpr int32_t kMaxVertices = (1 << 24) - 1;
@@ -51,12 +51,14 @@ struct Adjacency {
 };
 
 // Sorts `candidates` (position triples, ascending within each) into
-// lexicographic order in place, in linear time, and builds their adjacency:
+// lexicographic order in place (a radix sort) and builds their adjacency:
 // the triangle ids of `out` index the sorted list, so per-triangle weights
-// and normals are computed after. Two passes over the records, no search:
-// lexicographic order is what makes each list canonical.
-// kResourceExhausted above kMaxVertices or 2^29 triangles; kInternal for a
-// triple that is not three ascending positions below n.
+// and normals are computed after. The incidences are bucketed by their
+// edge's low end, each bucket grouped by high end; no record is looked up
+// and no list sorted: lexicographic order is what makes each list
+// canonical. kResourceExhausted above kMaxVertices or 2^29 triangles;
+// kInternal for a triple that is not three ascending positions below n.
+// On any error (also a cancel) `*candidates` and `*out` are unspecified.
 Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
                       const Control& control, Adjacency* out);
 

@@ -53,6 +53,10 @@ class CandidateNormals {
   CandidateNormals(const std::vector<Vec3>& points,
                    const std::vector<Triangle>& triangles)
       : points_(&points), triangles_(&triangles) {}
+  // It keeps pointers: no temporaries.
+  explicit CandidateNormals(std::vector<Vec3>&&) = delete;
+  CandidateNormals(std::vector<Vec3>&&, const std::vector<Triangle>&) = delete;
+  CandidateNormals(const std::vector<Vec3>&, std::vector<Triangle>&&) = delete;
   Vec3 operator[](int32_t t) const {
     return kept_ != nullptr ? (*kept_)[t]
                             : UnitNormal(*points_, (*triangles_)[t]);

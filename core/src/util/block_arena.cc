@@ -2,6 +2,7 @@
 #include "util/block_arena.h"
 
 #include <algorithm>
+#include <cassert>
 
 #include "util/flat_vector.h"
 
@@ -20,6 +21,7 @@ BlockArena::BlockArena() : outer_(current) {
 }
 
 BlockArena::~BlockArena() {
+  assert(current == this || !kMapTables);  // arenas nest on one stack
   if (current == this) current = outer_;
   for (const Chunk& c : chunks_) FreeTable(c.data, c.size);
 }
@@ -27,6 +29,7 @@ BlockArena::~BlockArena() {
 BlockArena* BlockArena::Current() { return current; }
 
 void* BlockArena::Allocate(size_t bytes) {
+  if (bytes > kLargestChunk * 1024) throw std::bad_alloc();  // no wrapping
   bytes = (bytes + kAlign - 1) & ~(kAlign - 1);
   if (chunks_.empty() || chunks_.back().size - used_ < bytes) {
     // Until the arena holds 2 MiB, each block is a heap allocation of its
@@ -40,7 +43,9 @@ void* BlockArena::Allocate(size_t bytes) {
       size =
           std::max(size, (bytes + kTableMapBytes - 1) & ~(kTableMapBytes - 1));
     }
-    chunks_.reserve(chunks_.size() + 1);  // no throw after the block is held
+    if (chunks_.size() == chunks_.capacity()) {
+      chunks_.reserve(2 * chunks_.size() + 8);  // no throw once it is held
+    }
     chunks_.push_back({static_cast<char*>(AllocateTable(size)), size});
     used_ = 0;
     reserved_ += size;

@@ -11,8 +11,10 @@
 // current on its thread when it is constructed (CGAL constructs its
 // allocators itself) and never frees into it: the arena frees everything
 // when it goes, so it must outlive every container that uses it (declare
-// it first). Sanitizer builds make no arena current: their heap checks
-// would not see inside a chunk.
+// it first), and no such container may be copied or moved out of its
+// scope. An arena is a local variable of one thread: arenas nest, and one
+// is not shared between threads. Sanitizer builds make no arena current:
+// their heap checks would not see inside a chunk.
 #ifndef DOT_CORE_UTIL_BLOCK_ARENA_H_
 #define DOT_CORE_UTIL_BLOCK_ARENA_H_
 
