@@ -12,9 +12,8 @@ namespace {
 // Checks that every candidate is three ascending positions below n, and
 // finds whether the list is already in lexicographic order.
 Status CheckCandidates(int32_t n, const std::vector<Triangle>& triangles,
-                       const Control& control, bool* sorted) {
+                       RunTicker& ticker, bool* sorted) {
   *sorted = true;
-  RunTicker ticker(control, Stage::kAdjacency);
   for (size_t t = 0; t < triangles.size(); ++t) {
     if (!ticker.Tick()) return ticker.status();
     const Triangle& tri = triangles[t];
@@ -97,7 +96,7 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
   }
   RunTicker ticker(control, Stage::kAdjacency);
   bool sorted = false;
-  Status s = CheckCandidates(n, triangles, control, &sorted);
+  Status s = CheckCandidates(n, triangles, ticker, &sorted);
   if (s.ok() && !sorted) s = SortLexicographically(n, ticker, &triangles);
   if (!s.ok()) return s;
 
