@@ -150,11 +150,16 @@ nb = nbformat.v4.new_notebook(
     cells=[nbformat.v4.new_code_cell(c.strip()) for c in cells])
 NotebookClient(nb, timeout=120, kernel_name="python3").execute()
 for cell in nb.cells:
+    # A slow kernel may send one printed line as several stream messages;
+    # the cell shows them as one text, each line as its last \\r left it.
+    text = "".join(out.text for out in cell.outputs
+                   if out.output_type == "stream" and out.name == "stdout")
+    if text:
+        print("\\n".join(line.rsplit("\\r", 1)[-1]
+                        for line in text.rstrip("\\n").split("\\n")))
     for out in cell.outputs:
         if out.output_type == "error":
             sys.exit(f"{out.ename}: {out.evalue}")
-        if out.output_type == "stream" and out.name == "stdout":
-            print(out.text.rsplit("\\r", 1)[-1])  # as the line ends up
         if out.output_type == "execute_result":
             print(out.data["text/plain"])
 """
