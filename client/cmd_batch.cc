@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <thread>
+#include <mutex>
 
 #include "commands.h"
 #include "exit_codes.h"
@@ -152,32 +152,32 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       pending[f].input = std::move(polygon.vertices);
     }
     if (requests.empty()) return;
-    auto channel = ChannelOrReport(ctx, flags->json);
-    if (!channel) return;
-    auto stub = v1::Triangulator::NewStub(channel);
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() +
-                         std::chrono::seconds(static_cast<int64_t>(
-                             ctx->connection.timeout_s * requests.size())));
-    auto stream = stub->TriangulateBatch(&context);
+    const Connection server = ConnectOrReport(ctx, flags->json);
+    if (!server) return;
     const auto start = std::chrono::steady_clock::now();
-    std::thread writer([&] {
-      for (const auto& r : requests) {
-        pending[r.id()].sent = std::chrono::steady_clock::now();
-        if (!stream->Write(r)) break;
-      }
-      stream->WritesDone();
-    });
     const bool tty = ::isatty(STDERR_FILENO) && !flags->json && !ctx->quiet;
     std::vector<Row> rows;
-    v1::TriangulateResponse msg;
-    while (stream->Read(&msg)) {
-      auto it = pending.find(msg.id());
-      if (it == pending.end()) continue;
+    // `pending` is shared with the stream's writer thread (`next`).
+    std::mutex pending_mutex;
+    size_t written = 0;
+    const auto next = [&]() -> const v1::TriangulateRequest* {
+      if (written == requests.size()) return nullptr;
+      const v1::TriangulateRequest& r = requests[written++];
+      std::lock_guard<std::mutex> lock(pending_mutex);
+      pending[r.id()].sent = std::chrono::steady_clock::now();
+      return &r;
+    };
+    const auto on_answer = [&](const v1::TriangulateResponse& msg) {
+      std::map<std::string, Pending>::iterator it;
+      {
+        std::lock_guard<std::mutex> lock(pending_mutex);
+        it = pending.find(msg.id());
+        if (it == pending.end()) return;
+      }
       Pending& p = it->second;
       if (msg.has_mesh()) {
         (void)p.assembler.Add(msg.mesh());
-        continue;
+        return;
       }
       CallOutcome out;
       out.latency_ms = MsSince(p.sent);
@@ -192,7 +192,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
           if (!s.ok()) out.status = {grpc::StatusCode::DATA_LOSS, s.message};
         }
       } else {
-        continue;  // progress
+        return;  // progress
       }
       PrintVerbose(*ctx, msg.id() + ": " + DescribeTiming(out));
       InputReport report;
@@ -241,11 +241,18 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       }
       report_one(report);
       rows.push_back(std::move(row));
-      pending.erase(it);
+      {
+        std::lock_guard<std::mutex> lock(pending_mutex);
+        pending.erase(it);
+      }
       if (tty) DrawBar(rows.size(), requests.size());
-    }
-    writer.join();
-    const grpc::Status status = stream->Finish();
+    };
+    const grpc::Status status = server.calls->batch(
+        server.channel,
+        std::chrono::system_clock::now() +
+            std::chrono::seconds(static_cast<int64_t>(
+                ctx->connection.timeout_s * requests.size())),
+        next, on_answer, nullptr);
     if (tty) std::fprintf(stderr, "\n");
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)

@@ -367,10 +367,9 @@ std::string ProgressLine(const v1::FillProgress& p) {
   return line;
 }
 
-// One mesh: read, fill (here or on the server, over `channel`, made on
-// first use), write, report.
-void FillOne(const FillFlags& f, Context* ctx,
-             std::shared_ptr<grpc::Channel>* channel) {
+// One mesh: read, fill (here or on the server, over `server`, connected
+// on first use), write, report.
+void FillOne(const FillFlags& f, Context* ctx, Connection* server) {
   FillOutcome o;
   std::string written;
   // Every outcome, as text on stderr or as one JSON object.
@@ -461,13 +460,12 @@ void FillOne(const FillFlags& f, Context* ctx,
   if (f.local) {
     o = FillLocal(f.input, f.ToWire(), std::move(soup), on_progress);
   } else {
-    if (!*channel) *channel = ChannelOrReport(ctx, f.json);
-    if (!*channel) return;
-    auto stub = v1::Triangulator::NewStub(*channel);
+    if (!*server) *server = ConnectOrReport(ctx, f.json);
+    if (!*server) return;
     phase("  uploading " + std::to_string(soup.faces.size()) + " faces");
     clock.Start("upload");
-    o = FillRemote(*stub, f.input, f.ToWire(), soup, ctx->connection.timeout_s,
-                   on_progress);
+    o = server->calls->fill(server->channel, f.input, f.ToWire(), soup,
+                            ctx->connection.timeout_s, on_progress);
   }
   phase("");
   o.notes.insert(o.notes.begin(), read_notes.begin(), read_notes.end());
@@ -619,11 +617,11 @@ void AddFillHolesCommand(CLI::App& app, Context* ctx) {
       return;
     }
     // One connection for every mesh sent to a server.
-    std::shared_ptr<grpc::Channel> channel;
+    Connection server;
     for (const std::string& input : inputs) {
       FillFlags one = *flags;
       one.input = input;
-      FillOne(one, ctx, &channel);
+      FillOne(one, ctx, &server);
     }
   });
 }

@@ -11,9 +11,9 @@
 
 #include "cli/json_envelope.h"
 #include "commands.h"
-#include "dot/v1/triangulation.grpc.pb.h"
+#include "dot/v1/triangulation.pb.h"
 #include "exit_codes.h"
-#include "grpc/health/v1/health.grpc.pb.h"
+#include "grpc/health/v1/health.pb.h"
 #include "wire/wire.h"
 
 namespace dot::client {
@@ -23,12 +23,6 @@ std::string MsText(std::chrono::steady_clock::time_point t0) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f ms", MsSince(t0));
   return buf;
-}
-
-void SetDeadline(grpc::ClientContext* context, double seconds) {
-  context->set_deadline(
-      std::chrono::system_clock::now() +
-      std::chrono::milliseconds(static_cast<int64_t>(seconds * 1000)));
 }
 
 // --json: the envelope of one call (no input; `s` null: no call made),
@@ -50,7 +44,7 @@ void PrintCallJson(std::ostream& os, const grpc::Status* s,
 }
 
 // The outcome of a call that failed (the README's outcomes).
-std::string CallOutcome(const grpc::Status& s) {
+std::string OutcomeOf(const grpc::Status& s) {
   return s.ok() ? "ok" : "call_failed";
 }
 
@@ -74,16 +68,12 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
   cmd->add_flag("--json", *json,
                 "one JSON object on stdout (the envelope, then \"status\")");
   cmd->callback([ctx, service, timeout, json] {
-    auto channel = ChannelOrReport(ctx, *json);
-    if (!channel) return;
-    auto stub = grpc::health::v1::Health::NewStub(channel);
-    grpc::ClientContext context;
-    SetDeadline(&context, *timeout);
-    grpc::health::v1::HealthCheckRequest request;
-    request.set_service(*service);
+    const Connection server = ConnectOrReport(ctx, *json);
+    if (!server) return;
     grpc::health::v1::HealthCheckResponse response;
     const auto t0 = std::chrono::steady_clock::now();
-    const grpc::Status s = stub->Check(&context, request, &response);
+    const grpc::Status s = server.calls->check_health(server.channel, *service,
+                                                      *timeout, &response);
     PrintVerbose(*ctx, "Check answered in " + MsText(t0));
     // Not reached, a service the server does not know (NOT_FOUND, as the
     // health protocol answers), or another failure (no health service).
@@ -104,7 +94,7 @@ void AddHealthCommand(CLI::App& app, Context* ctx) {
     RaiseExitCode(ctx, code);
     if (*json) {
       PrintCallJson(std::cout, &s,
-                    s.ok() && code != kExitOk ? "not_serving" : CallOutcome(s),
+                    s.ok() && code != kExitOk ? "not_serving" : OutcomeOf(s),
                     code, s.error_message(), MsSince(t0), "",
                     {{"status", JsonQuote(status)}});
       return;
@@ -127,18 +117,16 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
                  "one JSON object on stdout (the envelope, then "
                  "\"server_info\": the ServerInfo message)");
   info->callback([ctx, info_json] {
-    auto channel = ChannelOrReport(ctx, *info_json);
-    if (!channel) return;
-    auto stub = v1::Triangulator::NewStub(channel);
-    grpc::ClientContext context;
-    SetDeadline(&context, ctx->connection.timeout_s);
+    const Connection server = ConnectOrReport(ctx, *info_json);
+    if (!server) return;
     v1::ServerInfo i;
     const auto t0 = std::chrono::steady_clock::now();
-    const grpc::Status s = stub->GetServerInfo(&context, {}, &i);
+    const grpc::Status s = server.calls->server_info(
+        server.channel, ctx->connection.timeout_s, &i);
     PrintVerbose(*ctx, "GetServerInfo answered in " + MsText(t0));
     RaiseExitCode(ctx, ExitCodeFor(s));
     if (*info_json) {
-      PrintCallJson(std::cout, &s, CallOutcome(s), ExitCodeFor(s),
+      PrintCallJson(std::cout, &s, OutcomeOf(s), ExitCodeFor(s),
                     s.error_message(), MsSince(t0), "",
                     {{"server_info", s.ok() ? ProtoJson(i) : "null"}});
       return;
@@ -193,21 +181,17 @@ void AddInfoCommands(CLI::App& app, Context* ctx) {
       }
       return;
     }
-    auto channel = ChannelOrReport(ctx, *source_json);
-    if (!channel) return;
-    auto stub = v1::Triangulator::NewStub(channel);
-    grpc::ClientContext context;
-    SetDeadline(&context, ctx->connection.timeout_s);
+    const Connection server = ConnectOrReport(ctx, *source_json);
+    if (!server) return;
     const auto t0 = std::chrono::steady_clock::now();
-    auto reader = stub->GetSource(&context, {});
-    v1::SourceChunk chunk;
     size_t bytes = 0;
-    while (reader->Read(&chunk)) {
-      file.stream().write(chunk.data().data(),
-                          static_cast<std::streamsize>(chunk.data().size()));
-      bytes += chunk.data().size();
-    }
-    const grpc::Status s = reader->Finish();
+    const grpc::Status s = server.calls->source(
+        server.channel, ctx->connection.timeout_s,
+        [&](const std::string& data) {
+          file.stream().write(data.data(),
+                              static_cast<std::streamsize>(data.size()));
+          bytes += data.size();
+        });
     PrintVerbose(*ctx, "GetSource: " + std::to_string(bytes) + " bytes in " +
                            MsText(t0));
     const std::string written = s.ok() ? file.Commit() : "";

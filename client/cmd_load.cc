@@ -295,10 +295,10 @@ struct LoadRun {
   const LoadFlags& flags;
   const Context& ctx;
   std::vector<PolygonData> polygons;
-  std::vector<PolygonSoup> meshes;                             // --meshes
-  std::vector<v1::TriangulateRequest> requests;                // as they are
-  std::vector<std::unique_ptr<v1::Triangulator::Stub>> stubs;  // remote only
-  std::unique_ptr<DelaunayHelperPool> helpers;                 // local only
+  std::vector<PolygonSoup> meshes;               // --meshes
+  std::vector<v1::TriangulateRequest> requests;  // as they are
+  std::vector<Connection> servers;               // remote only
+  std::unique_ptr<DelaunayHelperPool> helpers;   // local only
   double timeout_s = 0;
   Clock::time_point start, end;
   std::atomic<int> next{0};  // the next request to send
@@ -324,6 +324,11 @@ struct LoadRun {
   }
 };
 
+// The connection worker w calls over (remote runs only).
+const Connection& Server(const LoadRun& run, int w) {
+  return run.servers[static_cast<size_t>(w) % run.servers.size()];
+}
+
 std::string OutcomeLabel(const CallOutcome& out) {
   if (out.status.ok() && out.summary.status() != v1::RESULT_STATUS_OK) {
     return "NO_TRIANGULATION";
@@ -336,10 +341,10 @@ void FillWorkerCall(LoadRun& run, int w, int i) {
   const PolygonSoup& mesh =
       run.meshes[static_cast<size_t>(i) % run.meshes.size()];
   const std::string id = "load-" + std::to_string(i);
-  const FillOutcome out = run.flags.local
-                              ? FillLocal(id, {}, mesh)
-                              : FillRemote(*run.stubs[w % run.stubs.size()], id,
-                                           {}, mesh, run.timeout_s);
+  const FillOutcome out = run.flags.local ? FillLocal(id, {}, mesh)
+                                          : Server(run, w).calls->fill(
+                                                Server(run, w).channel, id, {},
+                                                mesh, run.timeout_s, nullptr);
   const std::string label(wire::GrpcCodeName(out.status.error_code()));
   PrintVerbose(run.ctx, "request " + std::to_string(i) + ": " + label + " in " +
                             std::to_string(out.latency_ms) + " ms");
@@ -363,9 +368,10 @@ void CallWorker(LoadRun& run, int w) {
     std::vector<Vec3> input;
     const auto request = run.RequestFor(i, &input);
     const CallOutcome out =
-        run.flags.local ? TriangulateLocal(request, run.helpers.get())
-                        : TriangulateRemote(*run.stubs[w % run.stubs.size()],
-                                            request, input, run.timeout_s);
+        run.flags.local
+            ? TriangulateLocal(request, run.helpers.get())
+            : Server(run, w).calls->triangulate(Server(run, w).channel, request,
+                                                input, run.timeout_s, nullptr);
     PrintVerbose(run.ctx,
                  "request " + std::to_string(i) + ": " + DescribeTiming(out));
     run.tally.Record(OutcomeLabel(out), out.latency_ms,
@@ -377,41 +383,31 @@ void CallWorker(LoadRun& run, int w) {
 // One TriangulateBatch stream: a writer thread keeps `window` requests in
 // flight, this thread reads results as they finish, in any order.
 void StreamWorker(LoadRun& run, int s, int window) {
-  grpc::ClientContext context;
-  context.set_deadline(
-      std::chrono::system_clock::now() + (run.end - Clock::now()) +
-      std::chrono::milliseconds(static_cast<int64_t>(run.timeout_s * 1000)));
-  auto stream = run.stubs[s]->TriangulateBatch(&context);
   std::mutex m;
   std::condition_variable cv;
   int in_flight = 0;
   bool closed = false;
   std::map<std::string, Clock::time_point> sent;
-  std::thread writer([&] {
-    for (;;) {
-      {
-        std::unique_lock<std::mutex> lock(m);
-        cv.wait(lock, [&] { return closed || in_flight < window; });
-        if (closed) break;
-      }
-      const int i = run.Claim();
-      if (i < 0) break;
-      std::vector<Vec3> input;
-      v1::TriangulateRequest request = run.RequestFor(i, &input);
-      request.set_id(std::to_string(i));
-      {
-        std::lock_guard<std::mutex> lock(m);
-        sent[request.id()] = Clock::now();
-        ++in_flight;
-      }
-      if (!stream->Write(request)) break;
+  v1::TriangulateRequest request;  // the one being written
+  const auto next = [&]() -> const v1::TriangulateRequest* {
+    {
+      std::unique_lock<std::mutex> lock(m);
+      cv.wait(lock, [&] { return closed || in_flight < window; });
+      if (closed) return nullptr;
     }
-    stream->WritesDone();
-  });
-  v1::TriangulateResponse msg;
+    const int i = run.Claim();
+    if (i < 0) return nullptr;
+    std::vector<Vec3> input;
+    request = run.RequestFor(i, &input);
+    request.set_id(std::to_string(i));
+    std::lock_guard<std::mutex> lock(m);
+    sent[request.id()] = Clock::now();
+    ++in_flight;
+    return &request;
+  };
   int answered = 0;
-  while (stream->Read(&msg)) {
-    if (!msg.has_summary() && !msg.has_error()) continue;
+  const auto on_answer = [&](const v1::TriangulateResponse& msg) {
+    if (!msg.has_summary() && !msg.has_error()) return;
     ++answered;
     const std::string label =
         msg.has_error()
@@ -432,14 +428,20 @@ void StreamWorker(LoadRun& run, int s, int window) {
                               std::to_string(ms) + " ms");
     run.tally.Record(label, ms, msg.has_summary() && msg.summary().cache_hit(),
                      msg.has_error() ? msg.error().message() : "");
-  }
-  {
-    std::lock_guard<std::mutex> lock(m);
-    closed = true;
-  }
-  cv.notify_one();
-  writer.join();
-  const grpc::Status status = stream->Finish();
+  };
+  const auto reads_done = [&] {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      closed = true;
+    }
+    cv.notify_one();
+  };
+  const Connection& server = run.servers[s];
+  const grpc::Status status = server.calls->batch(
+      server.channel,
+      std::chrono::system_clock::now() + (run.end - Clock::now()) +
+          std::chrono::milliseconds(static_cast<int64_t>(run.timeout_s * 1000)),
+      next, on_answer, reads_done);
   if (!status.ok() && sent.empty() && answered == 0) {
     // The stream failed before it carried a request: that is one failure.
     run.tally.Record(std::string(wire::GrpcCodeName(status.error_code())), 0,
@@ -473,9 +475,8 @@ void RunLoad(LoadFlags& f, Context* ctx) {
     run.helpers = LocalDelaunayHelpers(f.concurrency);
   }
   for (int c = 0; c < f.channels && !f.local; ++c) {
-    auto channel = ChannelOrReport(ctx, f.json);
-    if (!channel) return;
-    run.stubs.push_back(v1::Triangulator::NewStub(channel));
+    run.servers.push_back(ConnectOrReport(ctx, f.json));
+    if (!run.servers.back()) return;
   }
   run.timeout_s = ctx->connection.timeout_s;
   run.start = Clock::now();
@@ -483,7 +484,7 @@ void RunLoad(LoadFlags& f, Context* ctx) {
                             static_cast<int64_t>(f.duration_s * 1000));
   std::vector<std::thread> threads;
   if (f.batch) {
-    const int streams = static_cast<int>(run.stubs.size());
+    const int streams = static_cast<int>(run.servers.size());
     for (int s = 0; s < streams; ++s) {
       const int window = (f.concurrency + streams - 1 - s) / streams;
       if (window > 0) {

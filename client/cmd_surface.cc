@@ -190,11 +190,10 @@ void SurfaceOne(const SurfaceFlags& f, Context* ctx) {
   if (f.local) {
     o = SurfaceLocal(flags.ToWire(), network, on_progress);
   } else {
-    const auto channel = ChannelOrReport(ctx, f.json);
-    if (!channel) return;
-    auto stub = v1::Triangulator::NewStub(channel);
-    o = SurfaceRemote(*stub, f.input, flags.ToWire(), network,
-                      ctx->connection.timeout_s, on_progress);
+    const Connection server = ConnectOrReport(ctx, f.json);
+    if (!server) return;
+    o = server.calls->surface(server.channel, f.input, flags.ToWire(), network,
+                              ctx->connection.timeout_s, on_progress);
   }
   if (bar) std::cerr << "\r\033[K" << std::flush;
   if (!o.status.ok()) {

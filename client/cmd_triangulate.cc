@@ -120,13 +120,11 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
     const bool mesh_to_stdout =
         output == "-" || (output.empty() && !many && IsStreamInput(files[0]));
     std::ostream& text = mesh_to_stdout ? std::cerr : std::cout;
-    std::shared_ptr<grpc::Channel> channel;
-    std::unique_ptr<v1::Triangulator::Stub> stub;
+    Connection server;
     std::unique_ptr<DelaunayHelperPool> helpers;
     if (!flags->local) {
-      channel = ChannelOrReport(ctx, flags->json);
-      if (!channel) return;
-      stub = v1::Triangulator::NewStub(channel);
+      server = ConnectOrReport(ctx, flags->json);
+      if (!server) return;
     } else if (flags->request.delaunay == "tetgen") {
       helpers = LocalDelaunayHelpers(1);
     }
@@ -190,8 +188,8 @@ void AddTriangulateCommand(CLI::App& app, Context* ctx) {
           wire::MakeRequest(file, polygon, flags->request.weights, options);
       out = flags->local
                 ? TriangulateLocal(request, helpers.get())
-                : TriangulateRemote(
-                      *stub, request, polygon.vertices,
+                : server.calls->triangulate(
+                      server.channel, request, polygon.vertices,
                       ctx->connection.timeout_s, [](const v1::Progress& p) {
                         std::cerr << "  " << v1::Stage_Name(p.stage()) << " "
                                   << static_cast<int>(100 * p.fraction())

@@ -4,14 +4,14 @@
 #ifndef DOT_CLIENT_FILL_CALL_H_
 #define DOT_CLIENT_FILL_CALL_H_
 
-#include <grpcpp/grpcpp.h>
+#include <grpcpp/support/status.h>
 
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "dot/dot.h"
-#include "dot/v1/triangulation.grpc.pb.h"
+#include "dot/v1/triangulation.pb.h"
 
 namespace dot::client {
 
@@ -51,13 +51,6 @@ using FillProgressFn = std::function<void(const v1::FillProgress&)>;
 FillOutcome FillLocal(const std::string& id, const v1::FillOptions& options,
                       PolygonSoup mesh,
                       const FillProgressFn& on_progress = nullptr);
-
-// The same over a server: the mesh's attribute channels are sent, and the
-// answer is shaped as FillLocal's.
-FillOutcome FillRemote(v1::Triangulator::Stub& stub, const std::string& id,
-                       const v1::FillOptions& options, const PolygonSoup& mesh,
-                       double timeout_s,
-                       const FillProgressFn& on_progress = nullptr);
 
 // The JSON object dotctl prints for a fill (--json): versioned, complete
 // for every outcome (the `outcome` names of remote_call.h). `called`: a

@@ -17,45 +17,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
-CallOutcome TriangulateRemote(
-    v1::Triangulator::Stub& stub, const v1::TriangulateRequest& request,
-    const std::vector<Vec3>& input, double timeout_s,
-    const std::function<void(const v1::Progress&)>& on_progress) {
-  const auto t0 = Clock::now();
-  CallOutcome out;
-  grpc::ClientContext context;
-  context.set_deadline(
-      std::chrono::system_clock::now() +
-      std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
-  auto reader = stub.Triangulate(&context, request);
-  v1::TriangulateResponse msg;
-  wire::MeshAssembler assembler;
-  bool have_summary = false;
-  Status assembly = OkStatus();
-  while (reader->Read(&msg)) {
-    if (msg.has_progress() && on_progress) on_progress(msg.progress());
-    if (msg.has_mesh() && assembly.ok()) assembly = assembler.Add(msg.mesh());
-    if (msg.has_summary()) {
-      out.summary = msg.summary();
-      have_summary = true;
-    }
-  }
-  out.status = reader->Finish();
-  if (out.status.ok() && !have_summary) {
-    out.status = {grpc::StatusCode::DATA_LOSS,
-                  "stream ended without a summary"};
-  }
-  if (out.status.ok() && assembly.ok() &&
-      out.summary.status() == v1::RESULT_STATUS_OK) {
-    assembly = assembler.Finish(out.summary, input, &out.mesh);
-  }
-  if (out.status.ok() && !assembly.ok()) {
-    out.status = {grpc::StatusCode::DATA_LOSS, assembly.message};
-  }
-  out.latency_ms = MsSince(t0);
-  return out;
-}
-
 CallOutcome TriangulateLocal(const v1::TriangulateRequest& request,
                              DelaunayHelperPool* helpers) {
   const auto t0 = Clock::now();

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
-// One Triangulate call, remote (streamed, reassembled) or local (the core
-// in-process, through the same wire mapping), with one outcome type.
+// One Triangulate call's outcome, remote (remote_calls.h: streamed,
+// reassembled) or local (the core in-process, through the same wire
+// mapping), and what dotctl reports of it.
 #ifndef DOT_CLIENT_REMOTE_CALL_H_
 #define DOT_CLIENT_REMOTE_CALL_H_
 
-#include <grpcpp/grpcpp.h>
+#include <grpcpp/support/status.h>
 
 #include <functional>
 #include <memory>
@@ -13,7 +14,7 @@
 
 #include "dot/delaunay_helpers.h"
 #include "dot/dot.h"
-#include "dot/v1/triangulation.grpc.pb.h"
+#include "dot/v1/triangulation.pb.h"
 
 namespace dot::client {
 
@@ -23,11 +24,6 @@ struct CallOutcome {
   MeshData mesh;        // the mesh, when summary.status is OK
   double latency_ms = 0;
 };
-
-CallOutcome TriangulateRemote(
-    v1::Triangulator::Stub& stub, const v1::TriangulateRequest& request,
-    const std::vector<Vec3>& input, double timeout_s,
-    const std::function<void(const v1::Progress&)>& on_progress = nullptr);
 
 // The core in this process, with the request's time and memory budgets.
 // With `helpers`, TetGen runs in them (as in dot-server): TetGen 1.5 aborts

@@ -4,8 +4,6 @@
 #ifndef DOT_CLIENT_REQUEST_FLAGS_H_
 #define DOT_CLIENT_REQUEST_FLAGS_H_
 
-#include <grpcpp/grpcpp.h>
-
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -49,11 +47,6 @@ struct ConnectionFlags {
   double timeout_s = 120;
 };
 void AddConnectionFlags(CLI::App* app, ConnectionFlags* flags);
-
-// A channel with the retry policy (UNAVAILABLE is retried on another
-// connection) and round-robin balancing over every resolved address.
-std::shared_ptr<grpc::Channel> MakeChannel(const ConnectionFlags& flags,
-                                           std::string* error);
 
 }  // namespace dot::client
 

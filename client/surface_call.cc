@@ -52,69 +52,6 @@ SurfaceOutcome SurfaceLocal(const v1::SurfaceOptions& wire_options,
   return out;
 }
 
-SurfaceOutcome SurfaceRemote(v1::Triangulator::Stub& stub,
-                             const std::string& id,
-                             const v1::SurfaceOptions& options,
-                             const CurveNetwork& network, double timeout_s,
-                             const SurfaceProgressFn& on_progress) {
-  const auto t0 = Clock::now();
-  SurfaceOutcome out;
-  grpc::ClientContext context;
-  context.set_deadline(
-      std::chrono::system_clock::now() +
-      std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000)));
-  auto stream = stub.SurfaceNetwork(&context);
-  const PolygonSoup soup = wire::SoupFromNetwork(network);
-  wire::SurfaceRequestWriter requests(id, options, soup, kRequestBytes);
-  v1::SurfaceNetworkRequest request;
-  while (requests.Next(&request)) {
-    if (!stream->Write(request)) break;  // the server answered early
-  }
-  stream->WritesDone();
-  wire::MeshAssembler assembler;
-  Status assembled = OkStatus();
-  bool have_report = false;
-  v1::SurfaceNetworkResponse response;
-  while (stream->Read(&response)) {
-    switch (response.payload_case()) {
-      case v1::SurfaceNetworkResponse::kProgress:
-        if (on_progress) on_progress(response.progress());
-        break;
-      case v1::SurfaceNetworkResponse::kMesh:
-        if (assembled.ok()) assembled = assembler.Add(response.mesh());
-        break;
-      case v1::SurfaceNetworkResponse::kReport:
-        out.report = response.report();
-        have_report = true;
-        break;
-      default:
-        break;
-    }
-  }
-  out.status = stream->Finish();
-  out.latency_ms = MsSince(t0);
-  if (!out.status.ok()) return out;
-  if (!have_report) {
-    out.status = grpc::Status(grpc::StatusCode::INTERNAL,
-                              "the server ended the stream without a report");
-    return out;
-  }
-  if (assembled.ok()) {
-    assembled = assembler.Finish(out.report.mesh_vertices(),
-                                 out.report.mesh_faces(), {}, &out.mesh);
-  }
-  if (assembled.ok() && out.mesh.vertices.size() < network.vertices.size()) {
-    assembled = InvalidArgument(
-        "the surface has fewer vertices than the "
-        "network sent");
-  }
-  if (!assembled.ok()) {
-    out.status = grpc::Status(grpc::StatusCode::INTERNAL,
-                              "bad mesh from the server: " + assembled.message);
-  }
-  return out;
-}
-
 std::vector<std::string> SurfaceNotes(const v1::SurfaceReport& r) {
   std::vector<std::string> notes;
   if (r.merged_vertices() > 0) {

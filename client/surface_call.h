@@ -4,14 +4,14 @@
 #ifndef DOT_CLIENT_SURFACE_CALL_H_
 #define DOT_CLIENT_SURFACE_CALL_H_
 
-#include <grpcpp/grpcpp.h>
+#include <grpcpp/support/status.h>
 
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "dot/dot.h"
-#include "dot/v1/triangulation.grpc.pb.h"
+#include "dot/v1/triangulation.pb.h"
 
 namespace dot::client {
 
@@ -29,13 +29,6 @@ using SurfaceProgressFn = std::function<void(const v1::SurfaceProgress&)>;
 SurfaceOutcome SurfaceLocal(const v1::SurfaceOptions& options,
                             const CurveNetwork& network,
                             const SurfaceProgressFn& on_progress = nullptr);
-
-// The same over a server.
-SurfaceOutcome SurfaceRemote(v1::Triangulator::Stub& stub,
-                             const std::string& id,
-                             const v1::SurfaceOptions& options,
-                             const CurveNetwork& network, double timeout_s,
-                             const SurfaceProgressFn& on_progress = nullptr);
 
 // What a user should know besides the counts, one line each: dangling
 // curves, patches left open, non-manifold curves, the report's notes.

@@ -30,10 +30,13 @@ void PrintVerbose(const Context& ctx, const std::string& message) {
   if (ctx.verbose) std::cerr << "dotctl: " << message << std::endl;
 }
 
-std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json) {
+Connection ConnectOrReport(Context* ctx, bool json) {
   std::string error;
-  auto channel = MakeChannel(ctx->connection, &error);
-  if (!channel) {
+  Connection c;
+  c.calls = LoadRemoteCalls(&error);
+  if (c.calls != nullptr)
+    c.channel = c.calls->make_channel(ctx->connection, &error);
+  if (!c.channel) {
     if (json) {
       JsonEnvelope e;
       e.outcome = "connection_error";
@@ -44,7 +47,7 @@ std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json) {
       PrintError(error);
     }
     RaiseExitCode(ctx, kExitUsage);
-    return nullptr;
+    return {};
   }
   char timeout[32];
   std::snprintf(timeout, sizeof timeout, "%g", ctx->connection.timeout_s);
@@ -52,7 +55,7 @@ std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json) {
       *ctx, "server " + ctx->connection.server +
                 (ctx->connection.tls_ca.empty() ? " (plaintext)" : " (TLS)") +
                 ", deadline " + timeout + " s a call");
-  return channel;
+  return c;
 }
 
 int ExitCodeFor(const grpc::Status& status) {

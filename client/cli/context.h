@@ -5,11 +5,12 @@
 #ifndef DOT_CLIENT_CLI_CONTEXT_H_
 #define DOT_CLIENT_CLI_CONTEXT_H_
 
-#include <grpcpp/grpcpp.h>
+#include <grpcpp/support/status.h>
 
 #include <memory>
 #include <string>
 
+#include "remote_calls.h"
 #include "request_flags.h"
 
 namespace dot::client {
@@ -31,10 +32,16 @@ void PrintVerbose(const Context& ctx, const std::string& message);
 
 // The exit code of an RPC's status (exit_codes.h).
 int ExitCodeFor(const grpc::Status& status);
-// The channel to ctx->connection, or null after reporting a usage error
-// (exit 2): on stderr, or with `json` as the subcommand's envelope with
-// outcome "connection_error" on stdout (an unreadable TLS file, say).
-std::shared_ptr<grpc::Channel> ChannelOrReport(Context* ctx, bool json);
+// A connection to ctx->connection: the remote calls (loaded on first use)
+// and a channel. Null after reporting a usage error (exit 2): on stderr, or
+// with `json` as the subcommand's envelope with outcome "connection_error"
+// on stdout (an unreadable TLS file, the remote module missing, say).
+struct Connection {
+  const RemoteCalls* calls = nullptr;
+  Channel channel;
+  explicit operator bool() const { return channel != nullptr; }
+};
+Connection ConnectOrReport(Context* ctx, bool json);
 
 }  // namespace dot::client
 

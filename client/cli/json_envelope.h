@@ -6,7 +6,7 @@
 #define DOT_CLIENT_CLI_JSON_ENVELOPE_H_
 
 #include <google/protobuf/message.h>
-#include <grpcpp/grpcpp.h>
+#include <grpcpp/support/status.h>
 
 #include <optional>
 #include <string>

@@ -14,8 +14,7 @@
 
 #include "fixtures/dotctl_run.h"
 #include "fixtures/service_fixture.h"
-#include "remote_call.h"
-#include "request_flags.h"
+#include "remote/grpc_calls.h"
 
 namespace dot {
 namespace {

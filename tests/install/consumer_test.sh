@@ -22,6 +22,17 @@ if command -v help2man > /dev/null; then
   done
   echo "man pages: dotctl.1 dot-server.1; bash completion: dotctl"
 fi
+# The installed dotctl finds its remote half (nothing listens on port 1:
+# unreachable, exit 3; without the module it would be a usage error, 2).
+rc=0
+"$work/prefix/bin/dotctl" --server 127.0.0.1:1 health --health-timeout 2 \
+  > "$work/health.log" 2>&1 || rc=$?
+if [ "$rc" != 3 ]; then
+  echo "installed dotctl health: exit $rc, not 3 (unreachable):"
+  cat "$work/health.log"
+  exit 1
+fi
+echo "installed dotctl: loads $(cd "$work/prefix" && find . -name dotctl-remote.so)"
 # 1. CMake: find_package(dot) -> dot::core.
 cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"

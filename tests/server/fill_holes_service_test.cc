@@ -10,9 +10,9 @@
 #include <future>
 #include <thread>
 
-#include "fill_call.h"
 #include "fixtures/meshes.h"
 #include "fixtures/service_fixture.h"
+#include "remote/grpc_calls.h"
 #include "wire/fill_wire.h"
 
 namespace dot {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "fixtures/service_fixture.h"
-#include "remote_call.h"
+#include "remote/grpc_calls.h"
 
 namespace dot {
 namespace {

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "fixtures/service_fixture.h"
-#include "remote_call.h"
+#include "remote/grpc_calls.h"
 
 extern char** environ;
 

@@ -19,7 +19,7 @@
 #include "dot/elapsed.h"
 #include "fixtures/service_fixture.h"
 #include "grpc/health/v1/health.grpc.pb.h"
-#include "remote_call.h"
+#include "remote/grpc_calls.h"
 
 namespace dot {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "dot/dot.h"
 #include "fixtures/service_fixture.h"
-#include "surface_call.h"
+#include "remote/grpc_calls.h"
 #include "wire/surface_wire.h"
 
 namespace dot {

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "remote_calls.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <mutex>
+
+namespace dot::client {
+namespace {
+
+// The directory of this executable ("" when /proc is not mounted).
+std::string ExecutableDirectory() {
+  std::string path(4096, '\0');
+  const ssize_t n = ::readlink("/proc/self/exe", path.data(), path.size());
+  if (n <= 0 || static_cast<size_t>(n) >= path.size()) return "";
+  path.resize(static_cast<size_t>(n));
+  return path.substr(0, path.rfind('/') + 1);
+}
+
+struct Loaded {
+  const RemoteCalls* calls = nullptr;
+  std::string error;
+};
+
+Loaded Load() {
+  const std::string dir = ExecutableDirectory();
+  const std::string candidates[] = {
+      dir + kRemoteModuleFile,
+      dir + DOT_REMOTE_MODULE_DIR "/" + kRemoteModuleFile};
+  Loaded out;
+  for (const std::string& file : candidates) {
+    if (::access(file.c_str(), F_OK) != 0) continue;
+    // RTLD_NOW: a module that does not fit this dotctl fails here, whole,
+    // not at its first call.
+    void* module = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (module == nullptr) {
+      out.error = "cannot load " + file + ": " + ::dlerror();
+      return out;
+    }
+    using Entry = const RemoteCalls* (*)(const char*, size_t);
+    const auto entry =
+        reinterpret_cast<Entry>(::dlsym(module, kRemoteModuleEntry));
+    out.calls =
+        entry == nullptr ? nullptr : entry(DOT_VERSION, sizeof(RemoteCalls));
+    if (out.calls == nullptr) {
+      out.error = file + " is not the remote half of dotctl " DOT_VERSION
+                         " (another build); reinstall dot";
+    }
+    return out;  // kept loaded for the life of the process
+  }
+  out.error = "cannot find " + std::string(kRemoteModuleFile) + " in " +
+              candidates[0].substr(0, candidates[0].rfind('/')) + " or " +
+              candidates[1].substr(0, candidates[1].rfind('/')) +
+              " (dotctl's remote commands need it; --local does not)";
+  return out;
+}
+
+}  // namespace
+
+const RemoteCalls* LoadRemoteCalls(std::string* error) {
+  static std::once_flag once;
+  static Loaded loaded;
+  std::call_once(once, [] { loaded = Load(); });
+  if (loaded.calls == nullptr) *error = loaded.error;
+  return loaded.calls;
+}
+
+}  // namespace dot::client
