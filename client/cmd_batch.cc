@@ -164,15 +164,20 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
       if (written == requests.size()) return nullptr;
       const v1::TriangulateRequest& r = requests[written++];
       std::lock_guard<std::mutex> lock(pending_mutex);
-      pending[r.id()].sent = std::chrono::steady_clock::now();
+      const auto it = pending.find(r.id());
+      if (it != pending.end())
+        it->second.sent = std::chrono::steady_clock::now();
       return &r;
     };
     const auto on_answer = [&](const v1::TriangulateResponse& msg) {
+      // The writer touches an entry's `sent` alone: read under the lock.
       std::map<std::string, Pending>::iterator it;
+      std::chrono::steady_clock::time_point sent;
       {
         std::lock_guard<std::mutex> lock(pending_mutex);
         it = pending.find(msg.id());
         if (it == pending.end()) return;
+        sent = it->second.sent;
       }
       Pending& p = it->second;
       if (msg.has_mesh()) {
@@ -180,7 +185,7 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
         return;
       }
       CallOutcome out;
-      out.latency_ms = MsSince(p.sent);
+      out.latency_ms = MsSince(sent);
       if (msg.has_error()) {
         out.status =
             grpc::Status(static_cast<grpc::StatusCode>(msg.error().code()),

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <mutex>
+#include <string>
+#include <vector>
 
 namespace dot::client {
 namespace {
@@ -23,11 +25,20 @@ struct Loaded {
   std::string error;
 };
 
-Loaded Load() {
+// Where the module may be: beside dotctl (a build tree), then where an
+// install puts it relative to dotctl; without /proc, the install's
+// absolute path alone (never a path relative to the working directory).
+std::vector<std::string> Candidates() {
   const std::string dir = ExecutableDirectory();
-  const std::string candidates[] = {
-      dir + kRemoteModuleFile,
-      dir + DOT_REMOTE_MODULE_DIR "/" + kRemoteModuleFile};
+  if (dir.empty()) {
+    return {std::string(DOT_REMOTE_MODULE_FULL_DIR "/") + kRemoteModuleFile};
+  }
+  return {dir + kRemoteModuleFile,
+          dir + DOT_REMOTE_MODULE_DIR "/" + kRemoteModuleFile};
+}
+
+Loaded Load() {
+  const std::vector<std::string> candidates = Candidates();
   Loaded out;
   for (const std::string& file : candidates) {
     if (::access(file.c_str(), F_OK) != 0) continue;
@@ -42,17 +53,19 @@ Loaded Load() {
     const auto entry =
         reinterpret_cast<Entry>(::dlsym(module, kRemoteModuleEntry));
     out.calls =
-        entry == nullptr ? nullptr : entry(DOT_VERSION, sizeof(RemoteCalls));
+        entry == nullptr ? nullptr : entry(DOT_REMOTE_ABI, sizeof(RemoteCalls));
     if (out.calls == nullptr) {
-      out.error = file + " is not the remote half of dotctl " DOT_VERSION
-                         " (another build); reinstall dot";
+      out.error = file + " is not the remote half of this dotctl (" +
+                  DOT_REMOTE_ABI + "): another build; reinstall dot";
     }
     return out;  // kept loaded for the life of the process
   }
-  out.error = "cannot find " + std::string(kRemoteModuleFile) + " in " +
-              candidates[0].substr(0, candidates[0].rfind('/')) + " or " +
-              candidates[1].substr(0, candidates[1].rfind('/')) +
-              " (dotctl's remote commands need it; --local does not)";
+  out.error = "cannot find " + std::string(kRemoteModuleFile) + " in";
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    out.error += (i == 0 ? " " : " or ") +
+                 candidates[i].substr(0, candidates[i].rfind('/'));
+  }
+  out.error += " (dotctl's remote commands need it; --local does not)";
   return out;
 }
 

@@ -2,13 +2,15 @@
 // dotctl's calls to a dot-server, through the dotctl-remote module
 // (remote/): dotctl loads it with dlopen at its first remote command, so a
 // process that never calls a server (--local, generate, view, --version)
-// never loads gRPC and its ~50 shared libraries, which cost ~25 ms of
+// never loads gRPC and its 45 shared libraries, which cost ~20 ms of
 // every start. A channel is opaque here: the module makes, uses and frees
-// it.
+// it (a gRPC channel and its stubs).
 #ifndef DOT_CLIENT_REMOTE_CALLS_H_
 #define DOT_CLIENT_REMOTE_CALLS_H_
 
-#include <grpcpp/support/status.h>  // a value type, inline only
+// gRPC's Status: a value type, used here through its inline members only
+// (not Status::OK, which is libgrpc++'s).
+#include <grpcpp/support/status.h>
 
 #include <chrono>
 #include <functional>
@@ -24,18 +26,16 @@
 #include "request_flags.h"
 #include "surface_call.h"
 
-namespace grpc {
-class Channel;
-}
-
 namespace dot::client {
 
-using Channel = std::shared_ptr<grpc::Channel>;
+struct RemoteChannel;  // the module's
+using Channel = std::shared_ptr<RemoteChannel>;
 
 // The module's entry points. Every function is safe to call from several
 // threads at once on one channel.
 struct RemoteCalls {
-  // A channel to flags.server (MakeChannel), or null with `*error`.
+  // A channel to flags.server (MakeChannel) with its stubs, or null with
+  // `*error`.
   Channel (*make_channel)(const ConnectionFlags& flags, std::string* error);
   // One Triangulate call (TriangulateRemote).
   CallOutcome (*triangulate)(
@@ -81,8 +81,9 @@ struct RemoteCalls {
 const RemoteCalls* LoadRemoteCalls(std::string* error);
 
 // The module's file name, and the C symbol it exports: a function taking
-// the dotctl version it must match and returning its RemoteCalls (null
-// when the versions differ).
+// the build key it must match (DOT_REMOTE_ABI: the version and a hash of
+// the headers whose types cross the table) and the table's size, and
+// returning its RemoteCalls (null when either differs).
 inline constexpr const char* kRemoteModuleFile = "dotctl-remote.so";
 inline constexpr const char* kRemoteModuleEntry = "dot_client_remote_calls";
 

@@ -31,10 +31,16 @@ CliRun WithLoaderTrace(const std::string& dotctl, const std::string& args) {
 TEST(CliRemoteModuleTest, LocalCommandsNeverLoadGrpc) {
   const fs::path dir = testing::TempDir("remote-module-local");
   const std::string curve = (dir / "monkey.xyz").string();
-  ASSERT_EQ(Dotctl("generate curve monkey -n 80 -o " + curve).code, 0);
+  const std::string cube = (dir / "cube.obj").string();
   for (const std::string& args :
-       {std::string("--version"),
-        "triangulate --local " + curve + " -o " + (dir / "m.ply").string()}) {
+       {std::string("--version"), "generate curve monkey -n 80 -o " + curve,
+        "triangulate --local " + curve + " -o " + (dir / "m.ply").string(),
+        "generate network cube -o " + cube,
+        "surface --local " + cube + " -o " + (dir / "cube.ply").string(),
+        "fill-holes --local " + (dir / "cube.ply").string() + " -o " +
+            (dir / "same.ply").string(),
+        "view " + (dir / "m.ply").string() + " -o " +
+            (dir / "m.html").string()}) {
     const CliRun r = WithLoaderTrace(DOT_DOTCTL_PATH, args);
     EXPECT_EQ(r.code, 0) << args << ": " << r.out;
     // The trace works (protobuf is loaded) and names no gRPC library.
@@ -58,7 +64,7 @@ TEST(CliRemoteModuleTest, RemoteCommandsLoadTheModule) {
 // dotctl alone (copied without its module): the remote commands fail with
 // a usage error that names the file looked for; --local still works.
 TEST(CliRemoteModuleTest, WithoutItsModuleDotctlSaysWhatIsMissing) {
-  const fs::path dir = testing::TempDir("remote-module-alone");
+  const fs::path dir = fs::canonical(testing::TempDir("remote-module-alone"));
   const fs::path alone = dir / "dotctl";
   std::error_code ec;
   fs::create_hard_link(DOT_DOTCTL_PATH, alone, ec);  // the same file
@@ -86,6 +92,13 @@ TEST(CliRemoteModuleTest, WithoutItsModuleDotctlSaysWhatIsMissing) {
   EXPECT_TRUE(
       Has(broken.out, "cannot load " + (dir / "dotctl-remote.so").string()))
       << broken.out;
+  // A module of another build (its entry refuses this dotctl's key).
+  fs::copy_file(DOT_FAKE_REMOTE_MODULE, dir / "dotctl-remote.so",
+                fs::copy_options::overwrite_existing);
+  const CliRun other = RunShell(dotctl + " --server 127.0.0.1:1 info");
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_TRUE(Has(other.out, "is not the remote half of this dotctl"))
+      << other.out;
   fs::remove_all(dir);
 }
 

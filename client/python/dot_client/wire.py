@@ -10,7 +10,7 @@ and message for message; :func:`fill_requests` mirrors
 (``proto/wire/surface_wire.cc``);
 :func:`assemble_triangulate`, :func:`assemble_fill` and
 :func:`assemble_patches` read a response stream as ``TriangulateRemote``
-(``client/remote_call.cc``) and ``FillRemote`` (``client/fill_call.cc``)
+(``client/remote/grpc_calls.cc``) and ``FillRemote`` (same file)
 do, and :func:`assemble_surface` a SurfaceNetwork answer. The client
 uses them on live streams; tests replay recorded streams
 (``tests/golden/``) through them, and the C++ tests replay the same files
@@ -587,7 +587,7 @@ def assemble_surface(
         on_progress: Optional[Callable[[SurfaceProgress], None]] = None
 ) -> SurfaceResult:
     """The SurfaceResult of a SurfaceNetwork response stream that ended
-    OK, read as ``SurfaceRemote`` (``client/surface_call.cc``) reads it:
+    OK, read as ``SurfaceRemote`` (``client/remote/grpc_calls.cc``) reads it:
     progress messages (to ``on_progress``), the whole mesh in MeshChunk
     slices (reassembled by :class:`MeshAssembler` to the report's
     ``mesh_vertices`` and ``mesh_faces``, at least as many vertices as
