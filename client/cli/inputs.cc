@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 namespace dot::client {
 
@@ -22,6 +23,16 @@ std::vector<std::string> ExpandInputs(
     const std::vector<std::string>& args, std::string* error,
     const std::vector<std::string>& extensions) {
   std::vector<std::string> files;
+  // A file named twice (or named and found in a directory named) is one
+  // input: batch streams key answers by input, and outputs would collide.
+  std::set<std::string> seen;
+  const auto add = [&](const std::string& file) {
+    std::error_code ec;
+    const fs::path canonical = fs::weakly_canonical(file, ec);
+    if (seen.insert(ec ? file : canonical.string()).second) {
+      files.push_back(file);
+    }
+  };
   for (const std::string& a : args) {
     std::error_code ec;
     if (a != "-" && fs::is_directory(a, ec)) {
@@ -37,9 +48,9 @@ std::vector<std::string> ExpandInputs(
         }
       }
       std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
+      for (const std::string& f : found) add(f);
     } else {
-      files.push_back(a);  // "-", a file, or a name the reader will refuse
+      add(a);  // "-", a file, or a name the reader will refuse
     }
   }
   if (files.empty() && error->empty()) {

@@ -13,7 +13,8 @@ namespace dot::client {
 // Files named, or found in a directory (those ending in one of
 // `extensions`, sorted; by default polygon files: .xyz, .txt, .obj); "-"
 // (stdin) and names that do not exist are passed through for the reader to
-// report. Error: no files at all.
+// report. Each file once, at its first mention (the same path twice, or a
+// file named and found in a directory named). Error: no files at all.
 std::vector<std::string> ExpandInputs(
     const std::vector<std::string>& args, std::string* error,
     const std::vector<std::string>& extensions = {".xyz", ".txt", ".obj"});
