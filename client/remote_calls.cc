@@ -8,6 +8,11 @@
 #include <string>
 #include <vector>
 
+// The module's entry, when a build links the remote half into dotctl
+// (sanitizer builds, client/CMakeLists.txt); null otherwise.
+extern "C" const dot::client::RemoteCalls* dot_client_remote_calls(
+    const char* key, size_t table_size) __attribute__((weak));
+
 namespace dot::client {
 namespace {
 
@@ -38,8 +43,12 @@ std::vector<std::string> Candidates() {
 }
 
 Loaded Load() {
-  const std::vector<std::string> candidates = Candidates();
   Loaded out;
+  if (dot_client_remote_calls != nullptr) {  // linked in
+    out.calls = dot_client_remote_calls(DOT_REMOTE_ABI, sizeof(RemoteCalls));
+    return out;
+  }
+  const std::vector<std::string> candidates = Candidates();
   for (const std::string& file : candidates) {
     if (::access(file.c_str(), F_OK) != 0) continue;
     // RTLD_NOW: a module that does not fit this dotctl fails here, whole,

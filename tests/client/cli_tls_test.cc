@@ -412,7 +412,9 @@ TEST_F(CliTest, OutputCheckedBeforeTheWorkAndJsonForEveryOutcome) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "meshes" / "m.obj"));
   // Several inputs and -o naming a mesh file.
-  r = Dotctl(flag_ + "triangulate " + m + " " + m + " -o " + Path("y.obj"));
+  ASSERT_EQ(Dotctl("generate curve monkey -n 60 -o " + Path("k.xyz")).code, 0);
+  r = Dotctl(flag_ + "triangulate " + m + " " + Path("k.xyz") + " -o " +
+             Path("y.obj"));
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_TRUE(Has(r.out, "need a directory")) << r.out;
   // An unreadable input gets its JSON object too.
