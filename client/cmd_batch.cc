@@ -73,9 +73,18 @@ void AddBatchCommand(CLI::App& app, Context* ctx) {
   AddRequestFlags(cmd, &flags->request);
   cmd->callback([flags, ctx] {
     std::string error;
-    const auto files = ExpandInputs(flags->inputs, &error);
-    if (error.empty() && std::count(files.begin(), files.end(), "-") > 1) {
+    const auto named = ExpandInputs(flags->inputs, &error);
+    if (error.empty() && std::count(named.begin(), named.end(), "-") > 1) {
       error = "stdin can be read once: give - once";
+    }
+    // The stream's answers are keyed by input: each is sent once.
+    std::vector<std::string> dropped;
+    const auto files = EachOnce(named, &dropped);
+    for (const std::string& again : dropped) {
+      if (!ctx->quiet) {
+        std::cerr << "dotctl: note: " << again
+                  << " is named more than once: sent once\n";
+      }
     }
     if (error.empty() && flags->output.empty() &&
         std::any_of(files.begin(), files.end(), IsStreamInput)) {

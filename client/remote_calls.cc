@@ -46,6 +46,10 @@ Loaded Load() {
   Loaded out;
   if (dot_client_remote_calls != nullptr) {  // linked in
     out.calls = dot_client_remote_calls(DOT_REMOTE_ABI, sizeof(RemoteCalls));
+    if (out.calls == nullptr) {
+      out.error = "the remote half linked into dotctl refused its key " +
+                  std::string(DOT_REMOTE_ABI);
+    }
     return out;
   }
   const std::vector<std::string> candidates = Candidates();

@@ -23,16 +23,7 @@ std::vector<std::string> ExpandInputs(
     const std::vector<std::string>& args, std::string* error,
     const std::vector<std::string>& extensions) {
   std::vector<std::string> files;
-  // A file named twice (or named and found in a directory named) is one
-  // input: batch streams key answers by input, and outputs would collide.
-  std::set<std::string> seen;
-  const auto add = [&](const std::string& file) {
-    std::error_code ec;
-    const fs::path canonical = fs::weakly_canonical(file, ec);
-    if (seen.insert(ec ? file : canonical.string()).second) {
-      files.push_back(file);
-    }
-  };
+  const auto add = [&](const std::string& file) { files.push_back(file); };
   for (const std::string& a : args) {
     std::error_code ec;
     if (a != "-" && fs::is_directory(a, ec)) {
@@ -59,6 +50,27 @@ std::vector<std::string> ExpandInputs(
     *error += ")";
   }
   return files;
+}
+
+std::vector<std::string> EachOnce(const std::vector<std::string>& files,
+                                  std::vector<std::string>* dropped) {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  for (const std::string& file : files) {
+    // A path as written, made absolute with `.` and `..` resolved: links
+    // are not followed (a link is its own input, written under its own
+    // name); a stream is its name.
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(file, ec);
+    const std::string key =
+        IsStreamInput(file) || ec ? file : absolute.lexically_normal().string();
+    if (seen.insert(key).second) {
+      out.push_back(file);
+    } else if (dropped != nullptr) {
+      dropped->push_back(file);
+    }
+  }
+  return out;
 }
 
 bool IsStreamInput(const std::string& input) {

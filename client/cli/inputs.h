@@ -13,11 +13,17 @@ namespace dot::client {
 // Files named, or found in a directory (those ending in one of
 // `extensions`, sorted; by default polygon files: .xyz, .txt, .obj); "-"
 // (stdin) and names that do not exist are passed through for the reader to
-// report. Each file once, at its first mention (the same path twice, or a
-// file named and found in a directory named). Error: no files at all.
+// report. Error: no files at all.
 std::vector<std::string> ExpandInputs(
     const std::vector<std::string>& args, std::string* error,
     const std::vector<std::string>& extensions = {".xyz", ".txt", ".obj"});
+// `files` with each path once, at its first mention (the same path named
+// twice, or a file named and also found in a directory named: compared as
+// absolute paths with `.` and `..` resolved, links not followed; streams by
+// name). The later mentions go to `dropped`. For the commands whose inputs
+// name their answers (batch keys its stream by input) and their outputs.
+std::vector<std::string> EachOnce(const std::vector<std::string>& files,
+                                  std::vector<std::string>* dropped);
 // "-", or a path that names a stream rather than a file (/dev/stdin,
 // /dev/fd/N, /proc/self/fd/N, a pipe, a device): nothing can be written
 // beside it.

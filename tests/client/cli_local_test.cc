@@ -73,24 +73,5 @@ TEST(CliLocalTest, TetgenHelperAgreesWithCgal) {
   std::filesystem::remove_all(dir);
 }
 
-// A file named twice, or named and found in a directory named, is one
-// input: solved once, one report, one output.
-TEST(CliLocalTest, AFileNamedTwiceIsOneInput) {
-  const auto dir = testing::TempDir("cli-twice");
-  const std::string curve = (dir / "monkey.xyz").string();
-  ASSERT_EQ(Dotctl("generate curve monkey -n 60 -o " + curve).code, 0);
-  const CliRun r = Dotctl("triangulate --local --json " + curve + " " +
-                          dir.string() + "/./monkey.xyz " + dir.string() +
-                          " -o " + (dir / "out.ply").string());
-  EXPECT_EQ(r.code, 0) << r.out;
-  size_t reports = 0;
-  for (size_t at = 0;
-       (at = r.out.find("\"outcome\":", at)) != std::string::npos; ++at) {
-    ++reports;
-  }
-  EXPECT_EQ(reports, 1u) << r.out;
-  std::filesystem::remove_all(dir);
-}
-
 }  // namespace
 }  // namespace dot

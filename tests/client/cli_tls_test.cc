@@ -380,6 +380,24 @@ TEST_F(CliTest, DashIsStdinAndStdout) {
   EXPECT_EQ(spiral.vertices.size(), 30u);
 }
 
+// batch keys its stream's answers by input: a file named twice (or named
+// and found in a directory named) is sent once, with a note.
+TEST_F(CliTest, BatchSendsAFileNamedTwiceOnce) {
+  ASSERT_EQ(Dotctl("generate curve monkey -n 60 -o " + Path("k.xyz")).code, 0);
+  const CliRun r =
+      Dotctl(flag_ + "batch --json " + Path("k.xyz") + " " + dir_.string() +
+             "/./k.xyz " + dir_.string() + " -o " + Path("out"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  size_t reports = 0;
+  for (size_t at = 0;
+       (at = r.out.find("\"outcome\":\"ok\"", at)) != std::string::npos; ++at) {
+    ++reports;
+  }
+  EXPECT_EQ(reports, 1u) << r.out;
+  EXPECT_TRUE(Has(r.out, "is named more than once: sent once")) << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "k.obj")) << r.out;
+}
+
 TEST_F(CliTest, OutputCheckedBeforeTheWorkAndJsonForEveryOutcome) {
   ASSERT_EQ(Dotctl("generate curve mobius -n 60 -o " + Path("m.xyz")).code, 0);
   const std::string m = Path("m.xyz");
