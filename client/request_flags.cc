@@ -2,9 +2,6 @@
 #include "request_flags.h"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <fstream>
-#include <sstream>
 
 namespace dot::client {
 
