@@ -36,14 +36,22 @@ CurveNetwork FaceEdgeNetwork(const PolygonSoup& soup, int segments);
 // seed at its farthest face (CutNetwork::patches says how many in all; at
 // most 2 patches + 16). The network is the patch rims, with only the
 // junctions and every `keep_every`-th (>= 1) other rim vertex (at least one
-// inside each curve). `face_patch` gives each mesh face its patch.
+// inside each curve). `face_patch` gives each mesh face its patch, and
+// `rims` each patch its rim: the network's vertex ids on it, sorted (the
+// answer a cycle search should find).
 struct CutNetwork {
   CurveNetwork network;
   std::vector<int32_t> face_patch;
   int32_t patches = 0;
+  std::vector<std::vector<int32_t>> rims;
 };
 Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
                       uint64_t seed, CutNetwork* out);
+
+// How many of the cut's patches have their rim among `cycles` (each a
+// cycle's vertex ids, its loops together, in any order).
+int32_t CountRimsFound(const CutNetwork& cut,
+                       const std::vector<std::vector<int32_t>>& cycles);
 
 }  // namespace dot
 

@@ -257,12 +257,14 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
   // The rim edges, one polyline each; the graph chains them into curves.
   CurveNetwork edges;
   edges.vertices = mesh.vertices;
+  std::map<std::pair<int32_t, int32_t>, std::pair<int32_t, int32_t>> sides;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
     for (int k = 0; k < 3; ++k) {
       const int32_t g = d.across[f][k];
       if (label[g] != label[f] && static_cast<int32_t>(f) < g) {
         edges.polylines.push_back({t[k], t[(k + 1) % 3]});
+        sides[std::minmax(t[k], t[(k + 1) % 3])] = {label[f], label[g]};
       }
     }
   }
@@ -279,6 +281,7 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
     }
     return id[v];
   };
+  std::vector<std::vector<int32_t>> rims(regions.seeds);
   for (const NetworkCurve& c : graph.curves) {
     const auto& vs = c.vertices;
     const size_t inner = vs.size() - 2;
@@ -296,11 +299,38 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
     std::vector<int32_t> line = {keep(vs.front())};
     for (size_t k : picks) line.push_back(keep(vs[k]));
     line.push_back(keep(vs.back()));
+    // The two patches across the curve's first edge (a mesh edge; a
+    // vertex welded to an earlier copy is found by its first id).
+    const auto side = sides.find(std::minmax(graph.input_of_vertex[vs[0]],
+                                             graph.input_of_vertex[vs[1]]));
+    if (side != sides.end()) {
+      for (int32_t patch : {side->second.first, side->second.second}) {
+        rims[patch].insert(rims[patch].end(), line.begin(), line.end());
+      }
+    }
     out->network.polylines.push_back(std::move(line));
+  }
+  for (auto& rim : rims) {
+    std::sort(rim.begin(), rim.end());
+    rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
   }
   out->face_patch = std::move(label);
   out->patches = regions.seeds;
+  out->rims = std::move(rims);
   return OkStatus();
+}
+
+int32_t CountRimsFound(const CutNetwork& cut,
+                       const std::vector<std::vector<int32_t>>& cycles) {
+  std::set<std::vector<int32_t>> found;
+  for (std::vector<int32_t> c : cycles) {
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    found.insert(std::move(c));
+  }
+  int32_t count = 0;
+  for (const auto& rim : cut.rims) count += found.count(rim) > 0;
+  return count;
 }
 
 }  // namespace dot

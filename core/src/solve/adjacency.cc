@@ -14,18 +14,25 @@ namespace {
 Status CheckCandidates(int32_t n, const std::vector<Triangle>& triangles,
                        RunTicker& ticker, bool* sorted) {
   *sorted = true;
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    if (!ticker.Tick()) return ticker.status();
-    const Triangle& tri = triangles[t];
-    if (!(0 <= tri[0] && tri[0] < tri[1] && tri[1] < tri[2] && tri[2] < n)) {
-      return MakeStatus(
-          StatusCode::kInternal,
-          "candidate triangle " + std::to_string(t) + " (" +
-              std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
-              std::to_string(tri[2]) +
-              ") is not three ascending positions below " + std::to_string(n));
-    }
-    if (t > 0 && tri < triangles[t - 1]) *sorted = false;
+  size_t bad = triangles.size();
+  if (!ForEachPolled(ticker, triangles.size(), [&](size_t t) {
+        const Triangle& tri = triangles[t];
+        if (!(0 <= tri[0] && tri[0] < tri[1] && tri[1] < tri[2] &&
+              tri[2] < n)) {
+          bad = t;
+          return false;
+        }
+        if (t > 0 && tri < triangles[t - 1]) *sorted = false;
+        return true;
+      })) {
+    if (bad == triangles.size()) return ticker.status();
+    const Triangle& tri = triangles[bad];
+    return MakeStatus(
+        StatusCode::kInternal,
+        "candidate triangle " + std::to_string(bad) + " (" +
+            std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
+            std::to_string(tri[2]) +
+            ") is not three ascending positions below " + std::to_string(n));
   }
   return OkStatus();
 }
@@ -39,25 +46,28 @@ Status SortLexicographically(int32_t n, RunTicker& ticker,
   std::vector<int32_t> start(n + 1);
   auto pass = [&](int corner, const Triangle* from, Triangle* to) {
     std::fill(start.begin(), start.end(), 0);
-    for (size_t t = 0; t < tris.size(); ++t) {
-      if (!ticker.Tick()) return false;
-      ++start[from[t][corner] + 1];
+    if (!ForEachPolled(ticker, tris.size(), [&](size_t t) {
+          ++start[from[t][corner] + 1];
+          return true;
+        })) {
+      return false;
     }
     for (int32_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    for (size_t t = 0; t < tris.size(); ++t) {
-      if (!ticker.Tick()) return false;
+    return ForEachPolled(ticker, tris.size(), [&](size_t t) {
       to[start[from[t][corner]]++] = from[t];
-    }
-    return true;
+      return true;
+    });
   };
   if (!pass(2, tris.data(), other.data()) ||
       !pass(1, other.data(), tris.data()) ||
       !pass(0, tris.data(), other.data())) {
     return ticker.status();
   }
-  for (size_t t = 0; t < tris.size(); ++t) {
-    if (!ticker.Tick()) return ticker.status();
-    tris[t] = other[t];
+  if (!ForEachPolled(ticker, tris.size(), [&](size_t t) {
+        tris[t] = other[t];
+        return true;
+      })) {
+    return ticker.status();
   }
   return OkStatus();
 }
@@ -104,21 +114,26 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
   // order: lexicographic order makes each edge's lists canonical below.
   const auto count = static_cast<uint32_t>(triangles.size());
   std::vector<int32_t> start(n + 1);
-  for (const Triangle& t : triangles) {
-    if (!ticker.Tick()) return ticker.status();
-    start[t[0] + 1] += 2;
-    ++start[t[1] + 1];
+  if (!ForEachPolled(ticker, triangles.size(), [&](size_t i) {
+        start[triangles[i][0] + 1] += 2;
+        ++start[triangles[i][1] + 1];
+        return true;
+      })) {
+    return ticker.status();
   }
   for (int32_t v = 0; v < n; ++v) start[v + 1] += start[v];
   FlatVector<Incidence> by_lo(3 * size_t{count});
   {
     std::vector<int32_t> next(start.begin(), start.end() - 1);
-    for (uint32_t t = 0; t < count; ++t) {
-      if (!ticker.Tick()) return ticker.status();
-      const Triangle& tri = triangles[t];
-      by_lo[next[tri[0]]++] = {tri[1], 4 * t};
-      by_lo[next[tri[1]]++] = {tri[2], 4 * t + 1};
-      by_lo[next[tri[0]]++] = {tri[2], 4 * t + 2};
+    if (!ForEachPolled(ticker, count, [&](size_t i) {
+          const auto t = static_cast<uint32_t>(i);
+          const Triangle& tri = triangles[t];
+          by_lo[next[tri[0]]++] = {tri[1], 4 * t};
+          by_lo[next[tri[1]]++] = {tri[2], 4 * t + 1};
+          by_lo[next[tri[0]]++] = {tri[2], 4 * t + 2};
+          return true;
+        })) {
+      return ticker.status();
     }
   }
 
@@ -149,8 +164,8 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
     const Incidence* first = by_lo.data() + start[lo];
     const Incidence* last = by_lo.data() + start[lo + 1];
     ends.clear();
+    if (!ticker.Advance(last - first + 1)) return ticker.status();
     for (const Incidence* r = first; r != last; ++r) {
-      if (!ticker.Tick()) return ticker.status();
       if (end_index[r->hi] < 0) {
         end_index[r->hi] = 0;
         ends.push_back(r->hi);

@@ -53,10 +53,12 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   RunTicker ticker(control, Stage::kDynamicProgram);
   FlatVector<double> slot_cost(slots);
   FlatVector<int32_t> slot_arg(slots);
-  for (size_t i = 0; i < slots; ++i) {
-    slot_cost[i] = kInf;
-    slot_arg[i] = -1;
-    if (!ticker.Tick()) return ticker.status();
+  if (!ForEachPolled(ticker, slots, [&](size_t i) {
+        slot_cost[i] = kInf;
+        slot_arg[i] = -1;
+        return true;
+      })) {
+    return ticker.status();
   }
   const double min_bend = MinBending(bending);
   auto bend = [&](const Vec3& a, const Vec3& b) {
@@ -70,6 +72,8 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   };
 
   std::vector<InnerCandidate> cand;
+  // Iterations since the last poll, in a local (see SolveDot1).
+  int64_t work = 0;
   double root_cost = kInf;
   int32_t root_arg = -1;
   for (int32_t e = 0; e < edges; ++e) {
@@ -112,18 +116,22 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
       const Vec3 nt = unit_normals[slot / 2];
       double best = kInf;
       int32_t best_u = -1;
+      ++work;
       for (const InnerCandidate& c : cand) {
         if (c.b + min_bend >= best) break;
+        ++work;
         const double v = c.b + bend(c.normal, nt);
         if (v < best) {
           best = v;
           best_u = c.u;
         }
-        if (!ticker.Tick(double(e) / edges)) return ticker.status();
       }
       slot_cost[slot] = best;
       slot_arg[slot] = best_u;
-      if (!ticker.Tick(double(e) / edges)) return ticker.status();
+      if (work >= RunTicker::kStride) {
+        work = 0;
+        if (!ticker.Poll(double(e) / edges)) return ticker.status();
+      }
     }
   }
   out->states = static_cast<int64_t>(adj.outer.size()) + 1;

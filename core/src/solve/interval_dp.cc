@@ -125,8 +125,8 @@ Status SolveIntervalDp(const IntervalDpInput& in, const Control& control,
       int32_t best_count = kNone, best_apex = -1;
       double best_cost = kInf;
       Vec3 best_normal;
+      if (!ticker.Advance(span, done)) return ticker.status();
       for (int32_t m = i + 1; m < k; ++m) {
-        if (!ticker.Tick(done)) return ticker.status();
         const size_t im = at(i, m), mk = at(m, k);
         if (count[im] == kNone || count[mk] == kNone) continue;
         const int32_t c = count[im] + count[mk] + (is_preferred[m] ? 0 : 1);

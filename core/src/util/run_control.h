@@ -4,6 +4,8 @@
 #define DOT_CORE_UTIL_RUN_CONTROL_H_
 
 #include <chrono>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -42,6 +44,13 @@ class RunTicker {
     count_ = 0;
     return Poll(fraction_done);
   }
+  // Tick for `units` iterations at once, counted after an inner loop.
+  bool Advance(int64_t units, double fraction_done = -1) {
+    count_ += units;
+    if (count_ < kStride) return true;
+    count_ = 0;
+    return Poll(fraction_done);
+  }
   bool Poll(double fraction_done = -1) {
     if (control_.cancel != nullptr && control_.cancel->load()) {
       status_ = MakeStatus(StatusCode::kCancelled, "cancelled by the caller");
@@ -62,17 +71,35 @@ class RunTicker {
     return true;
   }
   const Status& status() const { return status_; }
+  // Iterations between polls. Loops of a few instructions per iteration
+  // count in a local and Poll() when it reaches this.
+  static constexpr int kStride = 4096;
 
  private:
-  static constexpr int kStride = 4096;
   const Control& control_;
   Stage stage_;
   std::string_view activity_;
   bool reports_progress_ = true;
-  int count_ = 0;
+  int64_t count_ = 0;
   std::chrono::steady_clock::time_point last_report_{};
   Status status_;
 };
+
+// Runs body(i) for i in [0, n) with a Poll between blocks of 64 Ki, not a
+// Tick per iteration; body returns false to stop. False when the run
+// must stop (ticker.status() says why) or body stopped.
+template <typename Body>
+bool ForEachPolled(RunTicker& ticker, size_t n, Body&& body) {
+  constexpr size_t kBlock = size_t{1} << 16;
+  for (size_t begin = 0; begin < n; begin += kBlock) {
+    if (!ticker.Poll()) return false;
+    const size_t end = n - begin < kBlock ? n : begin + kBlock;
+    for (size_t i = begin; i < end; ++i) {
+      if (!body(i)) return false;
+    }
+  }
+  return true;
+}
 
 }  // namespace dot
 

@@ -4,6 +4,7 @@
 // cycle must be a cut patch's rim).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <tuple>
@@ -79,37 +80,41 @@ RimsFound FindCutRims(const std::string& mesh_name, int patches,
   EXPECT_TRUE(CutIntoPatches(mesh, patches, 1, seed, &cut).ok());
   NetworkGraph g;
   EXPECT_TRUE(BuildNetworkGraph(cut.network, &g).ok());
-  // The patches on each side of each curve's first edge.
-  std::map<std::tuple<double, double, double>, int32_t> id;
-  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
-    const Vec3& p = mesh.vertices[v];
-    id[{p.x, p.y, p.z}] = static_cast<int32_t>(v);
-  }
-  std::map<std::pair<int32_t, int32_t>, std::vector<int32_t>> faces_on;
-  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      faces_on[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}]
-          .push_back(static_cast<int32_t>(f));
-    }
-  }
-  std::map<int32_t, std::set<int32_t>> rim;
-  for (size_t c = 0; c < g.curves.size(); ++c) {
-    const Vec3& p = g.vertices[g.curves[c].vertices[0]];
-    const Vec3& q = g.vertices[g.curves[c].vertices[1]];
-    const int32_t a = id[{p.x, p.y, p.z}], b = id[{q.x, q.y, q.z}];
-    for (int32_t f : faces_on[{std::min(a, b), std::max(a, b)}]) {
-      rim[cut.face_patch[f]].insert(static_cast<int32_t>(c));
-    }
-  }
-  std::set<std::set<int32_t>> rims;
-  for (const auto& [patch, curves] : rim) rims.insert(curves);
   std::vector<NetworkCycle> cycles;
   EXPECT_TRUE(FindNetworkCycles(g, &cycles).ok());
+  std::vector<std::vector<int32_t>> found;
+  for (const NetworkCycle& c : cycles) {
+    found.emplace_back();
+    for (int32_t curve : CurvesOf(c)) {
+      const auto& vs = g.curves[curve].vertices;
+      found.back().insert(found.back().end(), vs.begin(), vs.end());
+    }
+  }
   out.patches = cut.patches;
   out.cycles = static_cast<int>(cycles.size());
-  for (const NetworkCycle& c : cycles) out.rims += rims.count(CurvesOf(c));
+  out.rims = CountRimsFound(cut, found);
   return out;
+}
+
+// The cut knows its answer: a rim per patch, every curve on two of them.
+TEST(NetworkCyclesTest, CutRimsAreThePatchBoundaries) {
+  MeshData mesh;
+  ASSERT_TRUE(
+      ReadMeshFile(std::string(DOT_MESH_DIR) + "/homer.off", &mesh).ok());
+  CutNetwork cut;
+  ASSERT_TRUE(CutIntoPatches(mesh, 25, 3, 1, &cut).ok());
+  ASSERT_EQ(cut.rims.size(), static_cast<size_t>(cut.patches));
+  for (const auto& line : cut.network.polylines) {
+    int on = 0;
+    for (const auto& rim : cut.rims) {
+      on += std::all_of(line.begin(), line.end(), [&](int32_t v) {
+        return std::binary_search(rim.begin(), rim.end(), v);
+      });
+    }
+    EXPECT_EQ(on, 2);
+  }
+  EXPECT_EQ(CountRimsFound(cut, cut.rims), cut.patches);
+  EXPECT_EQ(CountRimsFound(cut, {cut.network.polylines[0]}), 0);
 }
 
 // Homer (genus 0): every cycle is a rim, at every density.
