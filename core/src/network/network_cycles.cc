@@ -198,6 +198,31 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
       push_from(link.to);
     }
   }
+  // Then each junction takes the sign most of its curves carry to it: a
+  // tree link can be the one curve whose transport is wrong (over a fold,
+  // or long and bent on a coarse network), and the others outvote it. One
+  // vote per curve (votes weighted by agreement found fewer of the rims of
+  // cut meshes). Passes until no junction changes (a few; capped).
+  for (int pass = 0; pass < 20; ++pass) {
+    bool flipped = false;
+    for (auto& [v, j] : *js) {
+      if (!j.has_normal) continue;
+      int votes = 0;
+      for (const auto& [c, end] : curves_at[v]) {
+        std::vector<int32_t> path = g.curves[c].vertices;
+        if (end == 0) std::reverse(path.begin(), path.end());  // towards v
+        const Junction& from = (*js)[path.front()];
+        if (!from.has_normal) continue;
+        votes += Dot(Transport(g, path, from.normal), j.normal) > 0 ? 1 : -1;
+      }
+      if (votes < 0) {
+        j.normal = -1.0 * j.normal;
+        std::reverse(j.darts.begin(), j.darts.end());
+        flipped = true;
+      }
+    }
+    if (!flipped) break;
+  }
 }
 
 // Splits a face at junctions it passes more than once into simple loops

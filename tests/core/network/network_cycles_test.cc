@@ -70,14 +70,14 @@ TEST(NetworkCyclesTest, CubeHasSixSquares) {
 struct RimsFound {
   int patches = 0, cycles = 0, rims = 0;
 };
-RimsFound FindCutRims(const std::string& mesh_name, int patches,
-                      uint64_t seed) {
+RimsFound FindCutRims(const std::string& mesh_name, int patches, uint64_t seed,
+                      int keep_every = 1) {
   RimsFound out;
   MeshData mesh;
   EXPECT_TRUE(
       ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + mesh_name, &mesh).ok());
   CutNetwork cut;
-  EXPECT_TRUE(CutIntoPatches(mesh, patches, 1, seed, &cut).ok());
+  EXPECT_TRUE(CutIntoPatches(mesh, patches, keep_every, seed, &cut).ok());
   NetworkGraph g;
   EXPECT_TRUE(BuildNetworkGraph(cut.network, &g).ok());
   std::vector<NetworkCycle> cycles;
@@ -127,15 +127,17 @@ TEST(NetworkCyclesTest, CutMeshRimsAreFound) {
   }
 }
 
-// The elephant mesh has genus 3 (Euler characteristic -4): the
-// rotation system finds a genus-3 embedding; on coarse networks, where
-// junctions are far apart, a few junctions get the wrong sign (README,
-// known limits), so this asserts the measured floor.
+// The elephant mesh has genus 3 (Euler characteristic -4): the rotation
+// system finds a genus-3 embedding. With every third rim vertex (fewer,
+// longer curves) a few junctions still get the wrong sign (README, curve
+// networks): this asserts the measured floor, 190 of 202.
 TEST(NetworkCyclesTest, GenusThreeCutRimsAreFound) {
-  const RimsFound found = FindCutRims("elephant.off", 200, 2);
-  EXPECT_EQ(found.rims, found.patches);
-  const RimsFound coarse = FindCutRims("elephant.off", 200, 1);
-  EXPECT_GE(coarse.rims, coarse.patches * 97 / 100);
+  for (uint64_t seed : {1, 2}) {
+    const RimsFound found = FindCutRims("elephant.off", 200, seed);
+    EXPECT_EQ(found.rims, found.patches);
+  }
+  const RimsFound sparse = FindCutRims("elephant.off", 200, 1, 3);
+  EXPECT_GE(sparse.rims, sparse.patches * 94 / 100);
 }
 
 // Two rims and a seam: the caps, and the tube's face, which runs the seam
