@@ -4,9 +4,10 @@
 // ordered counter-clockwise around a normal (given, or the normal of the
 // plane that best fits their directions), the normals' signs are made to
 // agree along a maximum spanning tree of the junctions (a normal carried
-// along a curve, kept perpendicular to it, must meet the next one's), and
-// the faces of the embedding are traced: leaving each junction by the next
-// curve clockwise from the one arrived by keeps the face on the left. Every
+// along a curve, kept perpendicular to it, must meet the next one's), then
+// with most of each junction's curves, and the faces of the embedding are
+// traced: leaving each junction by the next curve clockwise from the one
+// arrived by keeps the face on the left. Every
 // curve then bounds two faces, run in opposite directions, so the patches
 // are consistently oriented and a closed network gives a closed surface,
 // whatever its genus (Euler's formula holds by construction).
@@ -199,29 +200,48 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
     }
   }
   // Then each junction takes the sign most of its curves carry to it: a
-  // tree link can be the one curve whose transport is wrong (over a fold,
-  // or long and bent on a coarse network), and the others outvote it. One
-  // vote per curve (votes weighted by agreement found fewer of the rims of
-  // cut meshes). Passes until no junction changes (a few; capped).
+  // tree link can be the one curve whose carried normal is wrong (over a
+  // fold, or long and bent on a coarse network), and the others outvote
+  // it. One vote per curve, +1 when the normal carried from one end meets
+  // the other's, -1 when it opposes it (votes weighted by agreement found
+  // fewer of the rims of cut meshes); a flip negates the votes of its
+  // curves, so each curve is carried once. Passes until no junction
+  // changes (a few; capped).
+  std::map<int32_t, std::vector<std::pair<int32_t, int>>> votes_at;
+  for (const auto& [v, at] : curves_at) {
+    if (!(*js)[v].has_normal) continue;
+    for (const auto& [c, end] : at) {
+      if (end != 0) continue;  // each curve once, from its first vertex
+      const auto& path = g.curves[c].vertices;
+      const Junction& to = (*js)[path.back()];
+      if (!to.has_normal) continue;
+      const double d = Dot(Transport(g, path, (*js)[v].normal), to.normal);
+      const int vote = (d > 0) - (d < 0);
+      votes_at[v].push_back({path.back(), vote});
+      votes_at[path.back()].push_back({v, vote});
+    }
+  }
+  std::map<int32_t, int> sign;  // -1: flipped since the votes were taken
   for (int pass = 0; pass < 20; ++pass) {
     bool flipped = false;
-    for (auto& [v, j] : *js) {
-      if (!j.has_normal) continue;
-      int votes = 0;
-      for (const auto& [c, end] : curves_at[v]) {
-        std::vector<int32_t> path = g.curves[c].vertices;
-        if (end == 0) std::reverse(path.begin(), path.end());  // towards v
-        const Junction& from = (*js)[path.front()];
-        if (!from.has_normal) continue;
-        votes += Dot(Transport(g, path, from.normal), j.normal) > 0 ? 1 : -1;
+    for (const auto& [v, votes] : votes_at) {
+      int sum = 0;
+      for (const auto& [w, vote] : votes) {
+        sum += vote * (sign.count(w) ? sign[w] : 1);
       }
-      if (votes < 0) {
-        j.normal = -1.0 * j.normal;
-        std::reverse(j.darts.begin(), j.darts.end());
+      int& s = sign.emplace(v, 1).first->second;
+      if (s * sum < 0) {
+        s = -s;
         flipped = true;
       }
     }
     if (!flipped) break;
+  }
+  for (const auto& [v, s] : sign) {
+    if (s > 0) continue;
+    Junction& j = (*js)[v];
+    j.normal = -1.0 * j.normal;
+    std::reverse(j.darts.begin(), j.darts.end());
   }
 }
 

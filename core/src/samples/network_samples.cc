@@ -271,6 +271,14 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
   NetworkGraph graph;
   s = BuildNetworkGraph(edges, &graph);
   if (!s.ok()) return s;
+  {  // The rim edges' sides by graph ids (which weld repeated points).
+    std::map<std::pair<int32_t, int32_t>, std::pair<int32_t, int32_t>> by_id;
+    for (const auto& [edge, side] : sides) {
+      by_id[std::minmax(graph.vertex_of_input[edge.first],
+                        graph.vertex_of_input[edge.second])] = side;
+    }
+    sides = std::move(by_id);
+  }
   // Keep junctions and every keep_every-th vertex between (one at least,
   // two on a closed curve, so no two curves become one edge).
   std::vector<int32_t> id(graph.vertices.size(), -1);
@@ -299,10 +307,8 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
     std::vector<int32_t> line = {keep(vs.front())};
     for (size_t k : picks) line.push_back(keep(vs[k]));
     line.push_back(keep(vs.back()));
-    // The two patches across the curve's first edge (a mesh edge; a
-    // vertex welded to an earlier copy is found by its first id).
-    const auto side = sides.find(std::minmax(graph.input_of_vertex[vs[0]],
-                                             graph.input_of_vertex[vs[1]]));
+    // The two patches across the curve's first edge (a mesh edge).
+    const auto side = sides.find(std::minmax(vs[0], vs[1]));
     if (side != sides.end()) {
       for (int32_t patch : {side->second.first, side->second.second}) {
         rims[patch].insert(rims[patch].end(), line.begin(), line.end());
@@ -320,6 +326,8 @@ Status CutIntoPatches(const MeshData& mesh, int patches, int keep_every,
   return OkStatus();
 }
 
+// By vertex sets: every curve of a cut keeps a vertex inside, so a set of
+// vertices names its curves.
 int32_t CountRimsFound(const CutNetwork& cut,
                        const std::vector<std::vector<int32_t>>& cycles) {
   std::set<std::vector<int32_t>> found;

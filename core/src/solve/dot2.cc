@@ -83,7 +83,13 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
         const int32_t slot = adj.outer[i];
         slot_cost[slot] = boundary_bend(adj.edge_lo[e], unit_normals[slot / 2]);
       }
+      work += oe - ob;
       continue;
+    }
+    work += adj.inner_begin[e + 1] - adj.inner_begin[e] + 1;
+    if (work >= RunTicker::kStride) {
+      work = 0;
+      if (!ticker.Poll(double(e) / edges)) return ticker.status();
     }
     cand.clear();
     for (int32_t i = adj.inner_begin[e]; i < adj.inner_begin[e + 1]; ++i) {

@@ -78,6 +78,7 @@ RimsFound FindCutRims(const std::string& mesh_name, int patches, uint64_t seed,
       ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + mesh_name, &mesh).ok());
   CutNetwork cut;
   EXPECT_TRUE(CutIntoPatches(mesh, patches, keep_every, seed, &cut).ok());
+  // Graph ids are the network's: a cut uses every vertex it lists, once.
   NetworkGraph g;
   EXPECT_TRUE(BuildNetworkGraph(cut.network, &g).ok());
   std::vector<NetworkCycle> cycles;
@@ -137,7 +138,7 @@ TEST(NetworkCyclesTest, GenusThreeCutRimsAreFound) {
     EXPECT_EQ(found.rims, found.patches);
   }
   const RimsFound sparse = FindCutRims("elephant.off", 200, 1, 3);
-  EXPECT_GE(sparse.rims, sparse.patches * 94 / 100);
+  EXPECT_GE(sparse.rims, 190);
 }
 
 // Two rims and a seam: the caps, and the tube's face, which runs the seam
