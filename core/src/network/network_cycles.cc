@@ -222,14 +222,13 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
     }
   }
   std::map<int32_t, int> sign;  // -1: flipped since the votes were taken
+  for (const auto& [v, votes] : votes_at) sign[v] = 1;
   for (int pass = 0; pass < 20; ++pass) {
     bool flipped = false;
     for (const auto& [v, votes] : votes_at) {
       int sum = 0;
-      for (const auto& [w, vote] : votes) {
-        sum += vote * (sign.count(w) ? sign[w] : 1);
-      }
-      int& s = sign.emplace(v, 1).first->second;
+      for (const auto& [w, vote] : votes) sum += vote * sign[w];
+      int& s = sign[v];
       if (s * sum < 0) {
         s = -s;
         flipped = true;

@@ -158,6 +158,7 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
   std::vector<int32_t> end_index(n, -1);
   std::vector<int32_t> ends, inner_next, outer_next, edge_of_end;
   int32_t inner_size = 0, outer_size = 0;
+  int64_t work = 0;  // since the last poll (RunTicker::Advance)
   // Buckets from the highest low end down, ends ascending within: every
   // edge [i, j] comes after its children [i, k] and [k, j], i < k < j.
   for (int32_t lo = n - 1; lo >= 0; --lo) {
@@ -168,7 +169,7 @@ Status BuildAdjacency(int32_t n, std::vector<Triangle>* candidates,
     // bucket late (a bucket holds a vertex's incidences: a few in a
     // Delaunay space, about n^2 / 2 in the space of all triangles, a few
     // ms at the n that space allows).
-    if (!ticker.Advance(3 * (last - first) + 1)) return ticker.status();
+    if (!ticker.Advance(work, 3 * (last - first) + 1)) return ticker.status();
     for (const Incidence* r = first; r != last; ++r) {
       if (end_index[r->hi] < 0) {
         end_index[r->hi] = 0;

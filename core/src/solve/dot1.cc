@@ -18,9 +18,7 @@ Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
   best.reserve(edges);
   arg.reserve(edges);
   RunTicker ticker(control, Stage::kDynamicProgram);
-  // Iterations since the last poll, in a local: a ticker's member counted
-  // here costs the pass a store per edge (8 % of it at n = 1,024).
-  int64_t work = 0;
+  int64_t work = 0;  // since the last poll (RunTicker::Advance)
   for (int32_t e = 0; e < edges; ++e) {
     if (adj.IsPolygonEdge(e)) {
       best.push_back(0);
@@ -38,10 +36,9 @@ Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
         bu = u;
       }
     }
-    work += adj.inner_begin[e + 1] - adj.inner_begin[e] + 1;
-    if (work >= RunTicker::kStride) {
-      work = 0;
-      if (!ticker.Poll(double(e) / edges)) return ticker.status();
+    if (!ticker.Advance(work, adj.inner_begin[e + 1] - adj.inner_begin[e] + 1,
+                        double(e) / edges)) {
+      return ticker.status();
     }
     best.push_back(b);
     arg.push_back(bu);

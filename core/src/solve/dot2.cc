@@ -72,8 +72,7 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
   };
 
   std::vector<InnerCandidate> cand;
-  // Iterations since the last poll, in a local (see SolveDot1).
-  int64_t work = 0;
+  int64_t work = 0;  // since the last poll (RunTicker::Advance)
   double root_cost = kInf;
   int32_t root_arg = -1;
   for (int32_t e = 0; e < edges; ++e) {
@@ -83,13 +82,12 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
         const int32_t slot = adj.outer[i];
         slot_cost[slot] = boundary_bend(adj.edge_lo[e], unit_normals[slot / 2]);
       }
-      work += oe - ob;
+      if (!ticker.Advance(work, oe - ob)) return ticker.status();
       continue;
     }
-    work += adj.inner_begin[e + 1] - adj.inner_begin[e] + 1;
-    if (work >= RunTicker::kStride) {
-      work = 0;
-      if (!ticker.Poll(double(e) / edges)) return ticker.status();
+    if (!ticker.Advance(work, adj.inner_begin[e + 1] - adj.inner_begin[e] + 1,
+                        double(e) / edges)) {
+      return ticker.status();
     }
     cand.clear();
     for (int32_t i = adj.inner_begin[e]; i < adj.inner_begin[e + 1]; ++i) {
@@ -122,10 +120,10 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
       const Vec3 nt = unit_normals[slot / 2];
       double best = kInf;
       int32_t best_u = -1;
-      ++work;
+      int64_t visited = 1;
       for (const InnerCandidate& c : cand) {
         if (c.b + min_bend >= best) break;
-        ++work;
+        ++visited;
         const double v = c.b + bend(c.normal, nt);
         if (v < best) {
           best = v;
@@ -134,9 +132,8 @@ Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
       }
       slot_cost[slot] = best;
       slot_arg[slot] = best_u;
-      if (work >= RunTicker::kStride) {
-        work = 0;
-        if (!ticker.Poll(double(e) / edges)) return ticker.status();
+      if (!ticker.Advance(work, visited, double(e) / edges)) {
+        return ticker.status();
       }
     }
   }

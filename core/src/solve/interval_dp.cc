@@ -108,6 +108,7 @@ Status SolveIntervalDp(const IntervalDpInput& in, const Control& control,
   out->table_bytes = IntervalDpBytes(n, bends);
 
   RunTicker ticker(control, Stage::kDynamicProgram);
+  int64_t work = 0;  // since the last poll (RunTicker::Advance)
   for (int32_t i = 0; i + 1 < n; ++i)
     count[at(i, i + 1)] = 0, cost[at(i, i + 1)] = 0;
   for (int32_t span = 2; span < n; ++span) {
@@ -125,7 +126,7 @@ Status SolveIntervalDp(const IntervalDpInput& in, const Control& control,
       int32_t best_count = kNone, best_apex = -1;
       double best_cost = kInf;
       Vec3 best_normal;
-      if (!ticker.Advance(span, done)) return ticker.status();
+      if (!ticker.Advance(work, span, done)) return ticker.status();
       for (int32_t m = i + 1; m < k; ++m) {
         const size_t im = at(i, m), mk = at(m, k);
         if (count[im] == kNone || count[mk] == kNone) continue;

@@ -44,11 +44,13 @@ class RunTicker {
     count_ = 0;
     return Poll(fraction_done);
   }
-  // Tick for `units` iterations at once, counted after an inner loop.
-  bool Advance(int64_t units, double fraction_done = -1) {
-    count_ += units;
-    if (count_ < kStride) return true;
-    count_ = 0;
+  // Tick for `units` iterations at once, counted in the caller's `work`:
+  // for loops of a few instructions per iteration, which keep the count in
+  // a local (a register) where a member would cost a store each time.
+  bool Advance(int64_t& work, int64_t units, double fraction_done = -1) {
+    work += units;
+    if (work < kStride) return true;
+    work = 0;
     return Poll(fraction_done);
   }
   bool Poll(double fraction_done = -1) {
@@ -71,16 +73,14 @@ class RunTicker {
     return true;
   }
   const Status& status() const { return status_; }
-  // Iterations between polls. Loops of a few instructions per iteration
-  // count in a local and Poll() when it reaches this.
-  static constexpr int kStride = 4096;
 
  private:
+  static constexpr int kStride = 4096;
   const Control& control_;
   Stage stage_;
   std::string_view activity_;
   bool reports_progress_ = true;
-  int64_t count_ = 0;
+  int count_ = 0;
   std::chrono::steady_clock::time_point last_report_{};
   Status status_;
 };
