@@ -94,9 +94,10 @@ def wavy_grid_with_holes():
     return v, f
 
 
-def holes_phase_budgets(progress, fractions=(0.15, 0.3, 0.45, 0.6, 0.75)):
+def holes_phase_budgets(progress,
+                        fractions=(0.05, 0.15, 0.3, 0.45, 0.6, 0.75)):
     """Time budgets (ms) that end at these fractions of the holes phase of
-    a fill whose FillProgress reports are `progress`. Five, from early on:
+    a fill whose FillProgress reports are `progress`. Six, from early on:
     a later fill may run faster than the one measured (warm caches, an
     idle core), and with three the earliest ended after the holes once,
     with the suite running beside it."""

@@ -361,6 +361,9 @@ def test_progress_reports_the_phases_in_order(client):
 
 def test_a_stopped_fill_keeps_the_holes_it_finished(client):
     v, f = wavy_grid_with_holes()
+    # Timed on a warm server (the first fill also warms its caches, and a
+    # budget measured on it ended every later fill in CI once).
+    client.fill_holes(v, f, skip_longest=True)
     seen = []
     client.fill_holes(v, f, skip_longest=True, progress=seen.append)
     # Budgets that end inside the holes phase (timing decides which do:
