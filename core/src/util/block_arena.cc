@@ -32,17 +32,12 @@ void* BlockArena::Allocate(size_t bytes) {
   if (bytes > kLargestChunk * 1024) throw std::bad_alloc();  // no wrapping
   bytes = (bytes + kAlign - 1) & ~(kAlign - 1);
   if (chunks_.empty() || chunks_.back().size - used_ < bytes) {
-    // Until the arena holds 2 MiB, each block is a heap allocation of its
-    // own size: a small tetrahedralization costs what it did without the
-    // arena. From then on, chunks of 2 MiB and more, doubling, on huge
-    // pages.
-    size_t size = bytes;
-    if (reserved_ + bytes > kTableMapBytes) {
-      const size_t last = chunks_.empty() ? 0 : chunks_.back().size;
-      size = std::max(kTableMapBytes, std::min(2 * last, kLargestChunk));
-      size =
-          std::max(size, (bytes + kTableMapBytes - 1) & ~(kTableMapBytes - 1));
-    }
+    // Chunks from 64 KiB (a small tetrahedralization holds little),
+    // doubling up to 32 MiB, all tables: on huge pages, the small ones
+    // sharing theirs.
+    const size_t last = chunks_.empty() ? kPoolBytes / 2 : chunks_.back().size;
+    size_t size = std::min(2 * last, kLargestChunk);
+    while (size < bytes) size *= 2;
     if (chunks_.size() == chunks_.capacity()) {
       chunks_.reserve(2 * chunks_.size() + 8);  // no throw once it is held
     }

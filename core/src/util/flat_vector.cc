@@ -3,8 +3,10 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
+#include <unordered_map>
 #include <vector>
 
 namespace dot {
@@ -14,13 +16,14 @@ constexpr size_t kHuge = size_t{2} << 20;
 constexpr size_t kPage = 4096;
 std::atomic<TableMeter> meter{nullptr};
 
-// A table's mapped size. Whole huge pages where that adds at most a
-// quarter (a table of 8 MiB or more always): the whole table faults in
-// 2 MiB at a time. Else whole 4 KiB pages: the partial last 2 MiB stays on
-// small pages, and the table holds no more than it touches.
+// A table's mapped size. One whole huge page below 2 MiB (at most twice
+// the table, as in the pool). Above, whole huge pages where that adds at
+// most a quarter (a table of 8 MiB or more always): the whole table faults
+// in 2 MiB at a time. Else whole 4 KiB pages: the partial last 2 MiB stays
+// on small pages, and the table holds no more than it touches.
 size_t Rounded(size_t bytes) {
   const size_t huge = (bytes + kHuge - 1) & ~(kHuge - 1);
-  if (huge - bytes <= bytes / 4) return huge;
+  if (bytes < kHuge || huge - bytes <= bytes / 4) return huge;
   return (bytes + kPage - 1) & ~(kPage - 1);
 }
 
@@ -107,30 +110,113 @@ void* Map(size_t size) {
   return p;
 }
 
+void* MapHuge(size_t size) {
+  void* p = TheCache().Take(size);
+  return p != nullptr ? p : Map(size);
+}
+
+void UnmapHuge(void* p, size_t size) noexcept {
+  if (!TheCache().Keep(p, size)) ::munmap(p, size);
+}
+
+// Tables of kPoolBytes to kPoolLargest share huge pages: a 2 MiB chunk
+// (2 MiB-aligned) is cut into blocks of one power-of-two class, so the
+// first table of a class faults once for the chunk instead of once per
+// 4 KiB, and later ones find it warm. A freed block serves the next table
+// of its class (last freed first); a chunk whose blocks are all free goes
+// back to the cache, which keeps it warm or returns it to the kernel.
+constexpr size_t kPoolLargest = kHuge / 2;
+constexpr int kClasses = 5;  // 64 KiB, 128 KiB, ..., 1 MiB
+static_assert(kPoolBytes << (kClasses - 1) == kPoolLargest);
+
+int ClassOf(size_t bytes) {
+  int c = 0;
+  while ((kPoolBytes << c) < bytes) ++c;
+  return c;
+}
+
+struct Pool {
+  std::mutex mutex;
+  std::vector<void*> free[kClasses];  // room for every block of the class
+  size_t chunks[kClasses] = {};
+  std::unordered_map<uintptr_t, uint32_t> held;  // chunk start -> blocks out
+
+  static uintptr_t ChunkOf(void* p) {
+    return reinterpret_cast<uintptr_t>(p) & ~(kHuge - 1);
+  }
+  void* Take(int c) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (free[c].empty()) {
+      // Room for every block of the class first: Give cannot throw.
+      const size_t block = kPoolBytes << c;
+      free[c].reserve((chunks[c] + 1) * (kHuge / block));
+      char* chunk = static_cast<char*>(MapHuge(kHuge));
+      try {
+        held.emplace(reinterpret_cast<uintptr_t>(chunk), 0);
+      } catch (...) {
+        UnmapHuge(chunk, kHuge);
+        throw;
+      }
+      ++chunks[c];
+      for (size_t at = kHuge; at >= block; at -= block) {
+        free[c].push_back(chunk + at - block);  // the chunk's start first
+      }
+    }
+    void* p = free[c].back();
+    free[c].pop_back();
+    ++held.find(ChunkOf(p))->second;  // its chunk is in the map
+    return p;
+  }
+  void Give(void* p, int c) noexcept {
+    std::lock_guard<std::mutex> lock(mutex);
+    const uintptr_t chunk = ChunkOf(p);
+    auto it = held.find(chunk);
+    if (--it->second > 0) {
+      free[c].push_back(p);  // within the capacity reserved in Take
+      return;
+    }
+    held.erase(it);
+    --chunks[c];
+    auto& list = free[c];
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](void* q) { return ChunkOf(q) == chunk; }),
+               list.end());
+    UnmapHuge(reinterpret_cast<void*>(chunk), kHuge);
+  }
+};
+
+Pool& ThePool() {
+  static Pool* pool = new Pool;  // outlives every table, also at exit
+  return *pool;
+}
+
+void Metered(int64_t delta) {
+  if (TableMeter m = meter.load(std::memory_order_relaxed)) m(delta);
+}
+
 }  // namespace
 
 void* AllocateTable(size_t bytes) {
-  if (!kMapTables || bytes < kTableMapBytes) return ::operator new(bytes);
+  if (!kMapTables || bytes < kPoolBytes) return ::operator new(bytes);
   if (bytes > SIZE_MAX - kHuge) throw std::bad_alloc();
-  const size_t size = Rounded(bytes);
-  void* p = TheCache().Take(size);
-  if (p == nullptr) p = Map(size);
-  if (TableMeter m = meter.load(std::memory_order_relaxed)) {
-    m(static_cast<int64_t>(bytes));
-  }
+  void* p = bytes <= kPoolLargest ? ThePool().Take(ClassOf(bytes))
+                                  : MapHuge(Rounded(bytes));
+  Metered(static_cast<int64_t>(bytes));
   return p;
 }
 
 void FreeTable(void* p, size_t bytes) noexcept {
   if (p == nullptr) return;
-  if (!kMapTables || bytes < kTableMapBytes) {
+  if (!kMapTables || bytes < kPoolBytes) {
     ::operator delete(p);
     return;
   }
-  if (!TheCache().Keep(p, Rounded(bytes))) ::munmap(p, Rounded(bytes));
-  if (TableMeter m = meter.load(std::memory_order_relaxed)) {
-    m(-static_cast<int64_t>(bytes));
+  if (bytes <= kPoolLargest) {
+    ThePool().Give(p, ClassOf(bytes));
+  } else {
+    UnmapHuge(p, Rounded(bytes));
   }
+  Metered(-static_cast<int64_t>(bytes));
 }
 
 void SetTableMeter(TableMeter m) { meter.store(m); }

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // Vectors for the large tables of a solve (adjacency, DP entries) and of
 // the edge index. Their first touch was a fifth of a large solve: every
-// 4 KiB page faults once, about 9 us each in a VM. TableAllocator maps
-// blocks of 2 MiB or more itself, starting on a 2 MiB boundary, and asks
-// the kernel for transparent huge pages on them (madvise; THP "madvise"
-// or "always" grants them), so each whole 2 MiB faults once: in every
-// entry point, with no environment variable. A table's partial last 2 MiB
-// is a huge page too where that adds at most a quarter to the table, else
-// it stays on 4 KiB pages. SetTableMeter lets a heap meter count these
-// blocks, and SetTableCacheBytes keeps freed ones warm for the next solve.
+// 4 KiB page faults once, about 9 us each in a VM. TableAllocator puts
+// every table of 64 KiB or more on transparent huge pages (madvise; THP
+// "madvise" or "always" grants them), in every entry point, with no
+// environment variable: tables up to 1 MiB share 2 MiB chunks, cut into
+// blocks of one power-of-two size each; larger ones are mapped alone from
+// a 2 MiB boundary, so each whole 2 MiB faults once. A table's partial
+// last 2 MiB is a huge page too where that adds at most a quarter to the
+// table (or the table is under 2 MiB), else it stays on 4 KiB pages.
+// SetTableMeter lets a heap meter count these blocks, and
+// SetTableCacheBytes keeps freed ones warm for the next solve.
 // FlatVector is the same with resize() leaving trivial elements
 // uninitialized: DP tables are written before they are read, and
 // zero-filling them first costs a page-faulting pass no cancel flag can
@@ -27,8 +29,9 @@
 
 namespace dot {
 
-// Blocks from this size on are mapped; smaller ones come from operator new.
-inline constexpr size_t kTableMapBytes = size_t{2} << 20;
+// Blocks from this size on are on huge pages; smaller ones come from
+// operator new.
+inline constexpr size_t kPoolBytes = size_t{64} << 10;
 // Sanitizers watch the heap (ASan its bounds, MSan what is initialized,
 // TSan its races): their builds keep every table there.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -43,8 +46,8 @@ inline constexpr bool kMapTables = true;
 #else
 inline constexpr bool kMapTables = true;
 #endif
-// A block for a table: from operator new below kTableMapBytes (and in
-// sanitizer builds, which watch the heap), else mapped on huge pages.
+// A block for a table: from operator new below kPoolBytes (and in
+// sanitizer builds, which watch the heap), else on huge pages.
 // Throws std::bad_alloc when the kernel refuses. Free with the same size.
 void* AllocateTable(size_t bytes);
 void FreeTable(void* p, size_t bytes) noexcept;

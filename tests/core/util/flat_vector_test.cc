@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <numeric>
 
 #include "dot/table_memory.h"
@@ -50,6 +51,43 @@ TEST(TableAllocatorTest, LargeTablesAreAlignedForHugePagesAndMetered) {
     }
   }
   EXPECT_EQ(metered.load(), 0);
+  SetTableMeter(nullptr);
+}
+
+// Tables of 64 KiB to 1 MiB share 2 MiB chunks, one size class each: a
+// freed block serves the next table of its class, and a chunk goes back
+// (to the cache here) when its last block is freed.
+TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
+  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  SetTableMeter(&Meter);
+  metered = 0;
+  SetTableCacheBytes(size_t{64} << 20);
+  TrimTableCache(0);
+  const auto chunk = [](const void* p) {
+    return reinterpret_cast<uintptr_t>(p) & ~((uintptr_t{2} << 20) - 1);
+  };
+  {
+    Table<char> a(100 << 10), b(90 << 10);  // both in the 128 KiB class
+    Table<char> c(600 << 10);               // the 1 MiB class: its own chunk
+    EXPECT_EQ(chunk(a.data()), chunk(b.data()));
+    EXPECT_NE(chunk(a.data()), chunk(c.data()));
+    EXPECT_EQ(std::abs(a.data() - b.data()), 128 << 10);
+    EXPECT_EQ(metered.load(), (100 << 10) + (90 << 10) + (600 << 10));
+    a.back() = 1;
+    b.front() = 2;
+    c.back() = 3;
+    EXPECT_EQ(TableCacheBytesHeld(), 0u);
+    const char* a_block = a.data();
+    a = Table<char>();                     // freed: the chunk is still held
+    EXPECT_EQ(TableCacheBytesHeld(), 0u);  // by b
+    Table<char> d(128 << 10);              // takes a's block back
+    EXPECT_EQ(d.data(), a_block);
+    EXPECT_EQ(d.back(), 0);  // value-initialized again
+  }
+  EXPECT_EQ(metered.load(), 0);
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);  // two whole chunks
+  SetTableCacheBytes(0);
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);
   SetTableMeter(nullptr);
 }
 
