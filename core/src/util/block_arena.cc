@@ -32,12 +32,16 @@ void* BlockArena::Allocate(size_t bytes) {
   if (bytes > kLargestChunk * 1024) throw std::bad_alloc();  // no wrapping
   bytes = (bytes + kAlign - 1) & ~(kAlign - 1);
   if (chunks_.empty() || chunks_.back().size - used_ < bytes) {
-    // Chunks from 64 KiB (a small tetrahedralization holds little),
-    // doubling up to 32 MiB, all tables: on huge pages, the small ones
-    // sharing theirs.
-    const size_t last = chunks_.empty() ? kPoolBytes / 2 : chunks_.back().size;
-    size_t size = std::min(2 * last, kLargestChunk);
-    while (size < bytes) size *= 2;
+    // Until the arena holds 64 KiB, each block is a heap allocation of its
+    // own size: a small tetrahedralization costs what it did without the
+    // arena. From then on, chunks of 64 KiB and more, doubling up to
+    // 32 MiB, all tables: on huge pages, the small ones sharing theirs.
+    size_t size = bytes;
+    if (reserved_ + bytes > kPoolBytes) {
+      const size_t last = chunks_.empty() ? 0 : chunks_.back().size;
+      size = std::max(kPoolBytes, std::min(2 * last, kLargestChunk));
+      while (size < bytes) size *= 2;
+    }
     if (chunks_.size() == chunks_.capacity()) {
       chunks_.reserve(2 * chunks_.size() + 8);  // no throw once it is held
     }

@@ -3,9 +3,10 @@
 // together: CGAL's Compact_container, which holds the Delaunay cells (a
 // large solve's biggest memory, and before this half of its page faults:
 // it grows in blocks of a few hundred KiB from the heap, on 4 KiB pages).
-// Its chunks, from 64 KiB doubling up to 32 MiB, are tables
-// (flat_vector.h): on huge pages (the small ones share theirs), kept warm
-// for the next solve by the table cache.
+// Its first 64 KiB are the containers' own blocks on the heap; then chunks
+// from 64 KiB, doubling up to 32 MiB, are tables (flat_vector.h): on huge
+// pages (the small ones share theirs), kept warm for the next solve by the
+// table cache.
 //
 // Containers reach it through ArenaAllocator, which takes the arena
 // current on its thread when it is constructed (CGAL constructs its
