@@ -73,7 +73,7 @@ void BM_DynamicProgram(benchmark::State& state, bool bi) {
   auto faces = MonkeyFaces(points);
   Adjacency adj;
   (void)BuildAdjacency(static_cast<int32_t>(points.size()), &faces, {}, &adj);
-  std::vector<double> w;
+  CandidateWeights w;
   std::vector<Vec3> unit;
   for (const Triangle& f : faces) {
     w.push_back(PerTriangleMetrics(points, {}, f)[Metric::kArea]);

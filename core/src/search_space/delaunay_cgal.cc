@@ -259,8 +259,9 @@ Status ReadFaces(const Delaunay& dt, RunTicker* ticker,
   *tetrahedra = static_cast<int64_t>(dt.number_of_finite_cells());
   faces->clear();
   faces->reserve(2 * dt.number_of_cells());
+  int64_t work = 0;
   for (auto f = dt.finite_facets_begin(); f != dt.finite_facets_end(); ++f) {
-    if (!ticker->Tick()) return ticker->status();
+    if (!ticker->Advance(work, 1)) return ticker->status();
     const typename Delaunay::Cell_handle c = f->first;
     const int i = f->second;
     Triangle t = {c->vertex((i + 1) & 3)->info(),

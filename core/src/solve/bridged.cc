@@ -284,8 +284,8 @@ Status SolveBridged(const std::vector<std::vector<int32_t>>& members,
       Adjacency adj;
       Status s = BuildAdjacency(m, &tris, control, &adj);
       if (!s.ok()) return s;
-      std::vector<double> w;
-      for (const Triangle& t : tris) w.push_back(at.Weight(t));
+      CandidateWeights w(tris.size());
+      for (size_t t = 0; t < tris.size(); ++t) w[t] = at.Weight(tris[t]);
       DpSolution sol;
       s = bi ? SolveDot2(adj, w, CandidateNormals(at.points, tris),
                          at.edge_normals, at.bending, control, &sol)

@@ -8,7 +8,7 @@
 #include "util/run_control.h"
 
 namespace dot {
-Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
+Status SolveDot1(const Adjacency& adj, const CandidateWeights& weight,
                  const Control& control, DpSolution* out) {
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t edges = adj.edge_count();

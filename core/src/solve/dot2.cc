@@ -43,7 +43,7 @@ double MinBending(BendingWeights w) {
   return lo;
 }
 
-Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
+Status SolveDot2(const Adjacency& adj, const CandidateWeights& weight,
                  const CandidateNormals& unit_normals,
                  const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out) {

@@ -18,6 +18,7 @@
 #include "dot/problem.h"
 #include "dot/status.h"
 #include "solve/adjacency.h"
+#include "util/flat_vector.h"
 
 namespace dot {
 
@@ -32,8 +33,12 @@ struct DpSolution {
   double dp_ms = 0, tiling_ms = 0;
 };
 
+// The weighted cost of each candidate triangle, by candidate id: a table
+// (huge pages when large; filled by the caller, element by element).
+using CandidateWeights = FlatVector<double>;
+
 // kNoTriangulation when no triangulation exists in the candidate set.
-Status SolveDot1(const Adjacency& adj, const std::vector<double>& weight,
+Status SolveDot1(const Adjacency& adj, const CandidateWeights& weight,
                  const Control& control, DpSolution* out);
 
 struct BendingWeights {
@@ -71,7 +76,7 @@ class CandidateNormals {
 // `edge_normals`: empty, or per polygon position i the unit normal of the
 // surface face across the polygon edge i -> i+1 (zero: none); the bending
 // between it and the patch triangle on that edge is priced too.
-Status SolveDot2(const Adjacency& adj, const std::vector<double>& weight,
+Status SolveDot2(const Adjacency& adj, const CandidateWeights& weight,
                  const CandidateNormals& unit_normals,
                  const std::vector<Vec3>& edge_normals, BendingWeights bending,
                  const Control& control, DpSolution* out);

@@ -91,14 +91,13 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
     for (int32_t id : loop.ids) normals.push_back(loop.normals[id]);
   }
   const size_t count = sp.triangles.size();
-  // Grown inside the ticked loop, so a cancel never waits for a bulk fill.
-  std::vector<double> w;
-  w.reserve(count);
+  CandidateWeights w(count);  // uninitialized: each written once below
   RunTicker ticker(control, Stage::kAdjacency);
-  for (size_t t = 0; t < count; ++t) {
-    if (!ticker.Tick()) return ticker.status();
-    w.push_back(
-        WeightedTriangleCost(weights, points, normals, sp.triangles[t]));
+  if (!ForEachPolled(ticker, count, [&](size_t t) {
+        w[t] = WeightedTriangleCost(weights, points, normals, sp.triangles[t]);
+        return true;
+      })) {
+    return ticker.status();
   }
   st.search_triangles = static_cast<int64_t>(count);
   st.edges = adj.edge_count();

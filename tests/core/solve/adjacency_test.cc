@@ -28,14 +28,14 @@ std::vector<Triangle> SolveOver(const std::vector<Vec3>& loop,
   Adjacency adj;
   EXPECT_TRUE(
       BuildAdjacency(static_cast<int32_t>(loop.size()), &faces, {}, &adj).ok());
-  std::vector<double> w;
+  CandidateWeights w;
   std::vector<Vec3> unit;
   for (const Triangle& f : faces) {
     w.push_back(PerTriangleMetrics(loop, {}, f)[Metric::kArea]);
     unit.push_back(UnitNormal(loop, f));
   }
   DpSolution sol;
-  const Status s = bi ? SolveDot2(adj, std::vector<double>(w.size(), 0),
+  const Status s = bi ? SolveDot2(adj, CandidateWeights(w.size(), 0.0),
                                   CandidateNormals(unit), {}, {0, 1}, {}, &sol)
                       : SolveDot1(adj, w, {}, &sol);
   EXPECT_TRUE(s.ok()) << s.message;
