@@ -10,8 +10,10 @@
 namespace dot {
 
 // Keeps up to `bytes` of freed tables for the next solves (default 0: all
-// are returned to the kernel at once), so a process that solves again and
-// again reuses pages already faulted in. A table the kept blocks cannot
+// are returned to the kernel at once, but for one empty 2 MiB chunk of
+// each size class of the tables under 1 MiB, at most 10 MiB, kept as
+// malloc keeps its heap), so a process that solves again and again reuses
+// pages already faulted in. A table the kept blocks cannot
 // serve first returns as many of them. Thread-safe; lowering the limit
 // returns the excess at once. dot-server keeps half of --malloc-keep-mb,
 // dotctl 256 MiB.
@@ -19,7 +21,7 @@ void SetTableCacheBytes(size_t bytes);
 // The freed table bytes kept now.
 size_t TableCacheBytesHeld();
 // Returns kept tables to the kernel, oldest first, until at most `bytes`
-// are kept (the limit is unchanged).
+// are kept (the limit is unchanged); the small tables' empty chunks first.
 void TrimTableCache(size_t bytes);
 
 }  // namespace dot

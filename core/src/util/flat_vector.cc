@@ -123,8 +123,11 @@ void UnmapHuge(void* p, size_t size) noexcept {
 // (2 MiB-aligned) is cut into blocks of one power-of-two class, so the
 // first table of a class faults once for the chunk instead of once per
 // 4 KiB, and later ones find it warm. A freed block serves the next table
-// of its class (last freed first); a chunk whose blocks are all free goes
-// back to the cache, which keeps it warm or returns it to the kernel.
+// of its class (last freed first). Each class keeps one chunk whose blocks
+// are all free, as malloc keeps its heap (repeated solves in one process
+// would otherwise fault and zero a fresh chunk each time: twice the
+// adjacency build's time at n = 1,024); a second empty chunk goes back to
+// the cache, which keeps it warm or returns it to the kernel.
 constexpr size_t kPoolLargest = kHuge / 2;
 constexpr int kClasses = 5;  // 64 KiB, 128 KiB, ..., 1 MiB
 static_assert(kPoolBytes << (kClasses - 1) == kPoolLargest);
@@ -139,6 +142,7 @@ struct Pool {
   std::mutex mutex;
   std::vector<void*> free[kClasses];  // room for every block of the class
   size_t chunks[kClasses] = {};
+  bool empty_kept[kClasses] = {};
   std::unordered_map<uintptr_t, uint32_t> held;  // chunk start -> blocks out
 
   static uintptr_t ChunkOf(void* p) {
@@ -161,6 +165,8 @@ struct Pool {
       for (size_t at = kHuge; at >= block; at -= block) {
         free[c].push_back(chunk + at - block);  // the chunk's start first
       }
+    } else if (held.find(ChunkOf(free[c].back()))->second == 0) {
+      empty_kept[c] = false;  // the kept chunk is in use again
     }
     void* p = free[c].back();
     free[c].pop_back();
@@ -169,12 +175,20 @@ struct Pool {
   }
   void Give(void* p, int c) noexcept {
     std::lock_guard<std::mutex> lock(mutex);
+    free[c].push_back(p);  // within the capacity reserved in Take
     const uintptr_t chunk = ChunkOf(p);
     auto it = held.find(chunk);
-    if (--it->second > 0) {
-      free[c].push_back(p);  // within the capacity reserved in Take
+    if (--it->second > 0) return;
+    if (!empty_kept[c]) {
+      empty_kept[c] = true;
       return;
     }
+    Release(it, c);
+  }
+  // Returns an empty chunk of class c: its blocks leave the free list.
+  void Release(std::unordered_map<uintptr_t, uint32_t>::iterator it,
+               int c) noexcept {
+    const uintptr_t chunk = it->first;
     held.erase(it);
     --chunks[c];
     auto& list = free[c];
@@ -182,6 +196,18 @@ struct Pool {
                               [&](void* q) { return ChunkOf(q) == chunk; }),
                list.end());
     UnmapHuge(reinterpret_cast<void*>(chunk), kHuge);
+  }
+  // Returns the kept empty chunks (TrimTableCache).
+  void Trim() noexcept {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (int c = 0; c < kClasses; ++c) {
+      if (!empty_kept[c]) continue;
+      empty_kept[c] = false;
+      const auto empty = std::find_if(
+          free[c].begin(), free[c].end(),
+          [&](void* q) { return held.find(ChunkOf(q))->second == 0; });
+      if (empty != free[c].end()) Release(held.find(ChunkOf(*empty)), c);
+    }
   }
 };
 
@@ -236,6 +262,9 @@ size_t TableCacheBytesHeld() {
   return cache.held;
 }
 
-void TrimTableCache(size_t bytes) { TheCache().Trim(bytes); }
+void TrimTableCache(size_t bytes) {
+  ThePool().Trim();
+  TheCache().Trim(bytes);
+}
 
 }  // namespace dot

@@ -55,8 +55,8 @@ TEST(TableAllocatorTest, LargeTablesAreAlignedForHugePagesAndMetered) {
 }
 
 // Tables of 64 KiB to 1 MiB share 2 MiB chunks, one size class each: a
-// freed block serves the next table of its class, and a chunk goes back
-// (to the cache here) when its last block is freed.
+// freed block serves the next table of its class; each class keeps one
+// empty chunk, which a trim hands to the cache (or the kernel).
 TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
   if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableMeter(&Meter);
@@ -85,10 +85,28 @@ TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
     EXPECT_EQ(d.back(), 0);  // value-initialized again
   }
   EXPECT_EQ(metered.load(), 0);
-  EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);  // two whole chunks
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);  // both chunks kept by their class
+  TrimTableCache(size_t{64} << 20);
+  EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);  // now the cache's
   SetTableCacheBytes(0);
   EXPECT_EQ(TableCacheBytesHeld(), 0u);
   SetTableMeter(nullptr);
+}
+
+// Without a cache, a class still keeps its empty chunk: the next solve's
+// table finds its pages warm.
+TEST(TableAllocatorTest, AClassKeepsItsEmptyChunkWithoutACache) {
+  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  SetTableCacheBytes(0);
+  const char* first = nullptr;
+  {
+    Table<char> a(300 << 10);
+    first = a.data();
+  }
+  Table<char> b(500 << 10);  // the same 512 KiB class
+  EXPECT_EQ(b.data(), first);
+  EXPECT_EQ(b[(500 << 10) - 1], 0);
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);
 }
 
 // With a cache, a freed table's pages serve the next one (and a smaller
