@@ -84,7 +84,7 @@ struct Incidence {
 
 int64_t Adjacency::Bytes() const {
   auto bytes = [](const auto& v) {
-    return static_cast<int64_t>(v.capacity() * sizeof(v[0]));
+    return static_cast<int64_t>(TableFootprint(v.capacity() * sizeof(v[0])));
   };
   return bytes(edge_lo) + bytes(edge_hi) + bytes(inner_begin) + bytes(inner) +
          bytes(outer_begin) + bytes(outer) + bytes(tri_edges);

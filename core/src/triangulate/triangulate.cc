@@ -93,11 +93,10 @@ Status Solve(const PreparedSpace& sp, const MetricWeights& weights,
   const size_t count = sp.triangles.size();
   CandidateWeights w(count);  // uninitialized: each written once below
   RunTicker ticker(control, Stage::kAdjacency);
-  if (!ForEachPolled(ticker, count, [&](size_t t) {
-        w[t] = WeightedTriangleCost(weights, points, normals, sp.triangles[t]);
-        return true;
-      })) {
-    return ticker.status();
+  int64_t work = 0;  // a poll every 4,096: a cost is up to ~200 ns
+  for (size_t t = 0; t < count; ++t) {
+    if (!ticker.Advance(work, 1)) return ticker.status();
+    w[t] = WeightedTriangleCost(weights, points, normals, sp.triangles[t]);
   }
   st.search_triangles = static_cast<int64_t>(count);
   st.edges = adj.edge_count();

@@ -37,10 +37,14 @@ void* BlockArena::Allocate(size_t bytes) {
     // arena. From then on, chunks of 64 KiB and more, doubling up to
     // 32 MiB, all tables: on huge pages, the small ones sharing theirs.
     size_t size = bytes;
-    if (reserved_ + bytes > kPoolBytes) {
+    if (bytes > kLargestChunk) {
+      size = (bytes + kTableHugeBytes - 1) & ~(kTableHugeBytes - 1);
+    } else if (reserved_ + bytes > kPoolBytes) {
       const size_t last = chunks_.empty() ? 0 : chunks_.back().size;
-      size = std::max(kPoolBytes, std::min(2 * last, kLargestChunk));
-      while (size < bytes) size *= 2;
+      size = kPoolBytes;  // a power of two: a pool class or whole 2 MiB
+      while (size < std::min(2 * last, kLargestChunk) || size < bytes) {
+        size *= 2;
+      }
     }
     if (chunks_.size() == chunks_.capacity()) {
       chunks_.reserve(2 * chunks_.size() + 8);  // no throw once it is held

@@ -12,7 +12,7 @@
 namespace dot {
 namespace {
 
-constexpr size_t kHuge = size_t{2} << 20;
+constexpr size_t kHuge = kTableHugeBytes;
 constexpr size_t kPage = 4096;
 std::atomic<TableMeter> meter{nullptr};
 
@@ -183,11 +183,12 @@ struct Pool {
       empty_kept[c] = true;
       return;
     }
-    Release(it, c);
+    Release(it, c, /*to_kernel=*/false);
   }
-  // Returns an empty chunk of class c: its blocks leave the free list.
-  void Release(std::unordered_map<uintptr_t, uint32_t>::iterator it,
-               int c) noexcept {
+  // Gives up an empty chunk of class c (its blocks leave the free list):
+  // to the cache, or straight to the kernel.
+  void Release(std::unordered_map<uintptr_t, uint32_t>::iterator it, int c,
+               bool to_kernel) noexcept {
     const uintptr_t chunk = it->first;
     held.erase(it);
     --chunks[c];
@@ -195,9 +196,17 @@ struct Pool {
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](void* q) { return ChunkOf(q) == chunk; }),
                list.end());
-    UnmapHuge(reinterpret_cast<void*>(chunk), kHuge);
+    if (to_kernel) {
+      ::munmap(reinterpret_cast<void*>(chunk), kHuge);
+    } else {
+      UnmapHuge(reinterpret_cast<void*>(chunk), kHuge);
+    }
   }
-  // Returns the kept empty chunks (TrimTableCache).
+  size_t Bytes() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return held.size() * kHuge;
+  }
+  // Returns the kept empty chunks to the kernel (TrimTableCache).
   void Trim() noexcept {
     std::lock_guard<std::mutex> lock(mutex);
     for (int c = 0; c < kClasses; ++c) {
@@ -206,7 +215,9 @@ struct Pool {
       const auto empty = std::find_if(
           free[c].begin(), free[c].end(),
           [&](void* q) { return held.find(ChunkOf(q))->second == 0; });
-      if (empty != free[c].end()) Release(held.find(ChunkOf(*empty)), c);
+      if (empty != free[c].end()) {
+        Release(held.find(ChunkOf(*empty)), c, /*to_kernel=*/true);
+      }
     }
   }
 };
@@ -222,12 +233,18 @@ void Metered(int64_t delta) {
 
 }  // namespace
 
+size_t TableFootprint(size_t bytes) {
+  if (!kMapTables || bytes < kPoolBytes) return bytes;
+  if (bytes > SIZE_MAX - kHuge) return bytes;  // AllocateTable refuses it
+  return bytes <= kPoolLargest ? kPoolBytes << ClassOf(bytes) : Rounded(bytes);
+}
+
 void* AllocateTable(size_t bytes) {
   if (!kMapTables || bytes < kPoolBytes) return ::operator new(bytes);
   if (bytes > SIZE_MAX - kHuge) throw std::bad_alloc();
   void* p = bytes <= kPoolLargest ? ThePool().Take(ClassOf(bytes))
                                   : MapHuge(Rounded(bytes));
-  Metered(static_cast<int64_t>(bytes));
+  Metered(static_cast<int64_t>(TableFootprint(bytes)));
   return p;
 }
 
@@ -242,7 +259,7 @@ void FreeTable(void* p, size_t bytes) noexcept {
   } else {
     UnmapHuge(p, Rounded(bytes));
   }
-  Metered(-static_cast<int64_t>(bytes));
+  Metered(-static_cast<int64_t>(TableFootprint(bytes)));
 }
 
 void SetTableMeter(TableMeter m) { meter.store(m); }
@@ -261,6 +278,8 @@ size_t TableCacheBytesHeld() {
   std::lock_guard<std::mutex> lock(cache.mutex);
   return cache.held;
 }
+
+size_t TablePoolBytes() { return ThePool().Bytes(); }
 
 void TrimTableCache(size_t bytes) {
   ThePool().Trim();

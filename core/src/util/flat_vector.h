@@ -32,6 +32,8 @@ namespace dot {
 // Blocks from this size on are on huge pages; smaller ones come from
 // operator new.
 inline constexpr size_t kPoolBytes = size_t{64} << 10;
+// A huge page.
+inline constexpr size_t kTableHugeBytes = size_t{2} << 20;
 // Sanitizers watch the heap (ASan its bounds, MSan what is initialized,
 // TSan its races): their builds keep every table there.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -51,8 +53,14 @@ inline constexpr bool kMapTables = true;
 // Throws std::bad_alloc when the kernel refuses. Free with the same size.
 void* AllocateTable(size_t bytes);
 void FreeTable(void* p, size_t bytes) noexcept;
-// Called with +bytes / -bytes for every mapped block (not for those from
-// operator new, which a replaced operator new sees): for heap meters.
+// The bytes a table of `bytes` holds: its size class in the pool, its
+// mapping rounded to pages, or `bytes` from operator new.
+size_t TableFootprint(size_t bytes);
+// The bytes of the pool's 2 MiB chunks, in use or kept empty.
+size_t TablePoolBytes();
+// Called with +footprint / -footprint for every block on huge pages (not
+// for those from operator new, which a replaced operator new sees): for
+// heap meters.
 using TableMeter = void (*)(int64_t delta);
 void SetTableMeter(TableMeter meter);
 // SetTableCacheBytes (dot/table_memory.h) keeps freed mapped blocks.

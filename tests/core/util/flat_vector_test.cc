@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
+#include <vector>
 
 #include "dot/table_memory.h"
 
@@ -18,20 +19,6 @@ namespace {
 std::atomic<int64_t> metered{0};
 void Meter(int64_t delta) { metered += delta; }
 
-bool Mapped() {
-#if defined(__SANITIZE_ADDRESS__)
-  return false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  return false;
-#else
-  return true;
-#endif
-#else
-  return true;
-#endif
-}
-
 TEST(TableAllocatorTest, LargeTablesAreAlignedForHugePagesAndMetered) {
   SetTableMeter(&Meter);
   metered = 0;
@@ -40,13 +27,13 @@ TEST(TableAllocatorTest, LargeTablesAreAlignedForHugePagesAndMetered) {
     std::iota(big.begin(), big.end(), 0);
     EXPECT_EQ(big[(3 << 20) - 1], (3 << 20) - 1);
     EXPECT_EQ(big[12345], 12345);  // value-initialized, then written
-    if (Mapped()) {
+    if (kMapTables) {
       EXPECT_EQ(reinterpret_cast<uintptr_t>(big.data()) % (2 << 20), 0u);
       EXPECT_EQ(metered.load(), int64_t{12} << 20);
     }
     Table<int32_t> small(1000);  // from operator new: not metered here
     EXPECT_EQ(small[999], 0);
-    if (Mapped()) {
+    if (kMapTables) {
       EXPECT_EQ(metered.load(), int64_t{12} << 20);
     }
   }
@@ -56,13 +43,15 @@ TEST(TableAllocatorTest, LargeTablesAreAlignedForHugePagesAndMetered) {
 
 // Tables of 64 KiB to 1 MiB share 2 MiB chunks, one size class each: a
 // freed block serves the next table of its class; each class keeps one
-// empty chunk, which a trim hands to the cache (or the kernel).
+// empty chunk until a trim returns it to the kernel. The meter counts the
+// size classes, what the tables hold.
 TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
-  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  if (!kMapTables) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableMeter(&Meter);
   metered = 0;
   SetTableCacheBytes(size_t{64} << 20);
   TrimTableCache(0);
+  ASSERT_EQ(TablePoolBytes(), 0u);
   const auto chunk = [](const void* p) {
     return reinterpret_cast<uintptr_t>(p) & ~((uintptr_t{2} << 20) - 1);
   };
@@ -72,47 +61,54 @@ TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
     EXPECT_EQ(chunk(a.data()), chunk(b.data()));
     EXPECT_NE(chunk(a.data()), chunk(c.data()));
     EXPECT_EQ(std::abs(a.data() - b.data()), 128 << 10);
-    EXPECT_EQ(metered.load(), (100 << 10) + (90 << 10) + (600 << 10));
+    EXPECT_EQ(metered.load(), (128 << 10) + (128 << 10) + (1024 << 10));
+    EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
     a.back() = 1;
     b.front() = 2;
     c.back() = 3;
-    EXPECT_EQ(TableCacheBytesHeld(), 0u);
     const char* a_block = a.data();
-    a = Table<char>();                     // freed: the chunk is still held
-    EXPECT_EQ(TableCacheBytesHeld(), 0u);  // by b
-    Table<char> d(128 << 10);              // takes a's block back
+    a = Table<char>();         // freed: the chunk is still held by b
+    Table<char> d(128 << 10);  // takes a's block back, value-initialized
     EXPECT_EQ(d.data(), a_block);
-    EXPECT_EQ(d.back(), 0);  // value-initialized again
+    EXPECT_EQ(d[(100 << 10) - 1], 0);  // where a.back() wrote 1
   }
   EXPECT_EQ(metered.load(), 0);
-  EXPECT_EQ(TableCacheBytesHeld(), 0u);  // both chunks kept by their class
-  TrimTableCache(size_t{64} << 20);
-  EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);  // now the cache's
-  SetTableCacheBytes(0);
+  EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);  // one empty chunk a class
+  EXPECT_EQ(TableCacheBytesHeld(), 0u);          // not the cache's
+  TrimTableCache(size_t{64} << 20);              // to the kernel
+  EXPECT_EQ(TablePoolBytes(), 0u);
   EXPECT_EQ(TableCacheBytesHeld(), 0u);
+  SetTableCacheBytes(0);
   SetTableMeter(nullptr);
 }
 
-// Without a cache, a class still keeps its empty chunk: the next solve's
-// table finds its pages warm.
-TEST(TableAllocatorTest, AClassKeepsItsEmptyChunkWithoutACache) {
-  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+// A class keeps one empty chunk, not two: the second goes to the cache
+// (here the kernel), and a table taken from the kept chunk uses it again.
+TEST(TableAllocatorTest, AClassKeepsOneEmptyChunk) {
+  if (!kMapTables) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableCacheBytes(0);
-  const char* first = nullptr;
+  TrimTableCache(0);
+  ASSERT_EQ(TablePoolBytes(), 0u);
   {
-    Table<char> a(300 << 10);
-    first = a.data();
+    std::vector<Table<char>> tables;  // 33 blocks of 64 KiB: two chunks
+    for (int i = 0; i < 33; ++i) tables.emplace_back(64 << 10);
+    EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
   }
-  Table<char> b(500 << 10);  // the same 512 KiB class
-  EXPECT_EQ(b.data(), first);
-  EXPECT_EQ(b[(500 << 10) - 1], 0);
-  EXPECT_EQ(TableCacheBytesHeld(), 0u);
+  EXPECT_EQ(TablePoolBytes(), size_t{2} << 20);
+  {
+    Table<char> again(80 << 10);  // the 128 KiB class
+    Table<char> same(50 << 10);   // 64 KiB: from the kept chunk
+    EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
+  }
+  EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);  // both classes keep one
+  TrimTableCache(0);
+  EXPECT_EQ(TablePoolBytes(), 0u);
 }
 
 // With a cache, a freed table's pages serve the next one (and a smaller
 // one takes the front of a larger block); without, none are kept.
 TEST(TableAllocatorTest, FreedTablesAreKeptOnlyWhenAsked) {
-  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  if (!kMapTables) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableCacheBytes(size_t{64} << 20);
   const void* first = nullptr;
   {
@@ -139,7 +135,7 @@ TEST(TableAllocatorTest, FreedTablesAreKeptOnlyWhenAsked) {
 // Kept blocks too small for a table go back to the kernel before it is
 // mapped, and a block far larger than asked is not cut down for it.
 TEST(TableAllocatorTest, KeptBlocksThatCannotServeAreReturned) {
-  if (!Mapped()) GTEST_SKIP() << "sanitizer build: tables on the heap";
+  if (!kMapTables) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableCacheBytes(size_t{256} << 20);
   { Table<char> small(size_t{4} << 20); }
   EXPECT_EQ(TableCacheBytesHeld(), size_t{4} << 20);
