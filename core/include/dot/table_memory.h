@@ -10,10 +10,9 @@
 namespace dot {
 
 // Keeps up to `bytes` of freed tables for the next solves (default 0: all
-// are returned to the kernel at once, but for one empty 2 MiB chunk of
-// each size class of the tables under 1 MiB, at most 10 MiB, kept as
-// malloc keeps its heap), so a process that solves again and again reuses
-// pages already faulted in. A table the kept blocks cannot
+// are returned to the kernel at once, but for up to 16 empty 2 MiB chunks
+// of the tables under 1 MiB, 32 MiB, kept as malloc keeps its heap), so a
+// process that solves again and again reuses pages already faulted in. A table the kept blocks cannot
 // serve first returns as many of them. Thread-safe; lowering the limit
 // returns the excess at once. dot-server keeps half of --malloc-keep-mb,
 // dotctl 256 MiB.

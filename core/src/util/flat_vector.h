@@ -5,10 +5,11 @@
 // every table of 64 KiB or more on transparent huge pages (madvise; THP
 // "madvise" or "always" grants them), in every entry point, with no
 // environment variable: tables up to 1 MiB share 2 MiB chunks, cut into
-// blocks of one power-of-two size each; larger ones are mapped alone from
-// a 2 MiB boundary, so each whole 2 MiB faults once. A table's partial
-// last 2 MiB is a huge page too where that adds at most a quarter to the
-// table (or the table is under 2 MiB), else it stays on 4 KiB pages.
+// blocks of one size class each (four per doubling); larger ones are
+// mapped alone from a 2 MiB boundary, so each whole 2 MiB faults once. A
+// table's partial last 2 MiB is a huge page too where that adds at most a
+// quarter to the table (or the table is under 2 MiB), else it stays on
+// 4 KiB pages.
 // SetTableMeter lets a heap meter count these blocks, and
 // SetTableCacheBytes keeps freed ones warm for the next solve.
 // FlatVector is the same with resize() leaving trivial elements

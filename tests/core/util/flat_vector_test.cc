@@ -56,24 +56,24 @@ TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
     return reinterpret_cast<uintptr_t>(p) & ~((uintptr_t{2} << 20) - 1);
   };
   {
-    Table<char> a(100 << 10), b(90 << 10);  // both in the 128 KiB class
-    Table<char> c(600 << 10);               // the 1 MiB class: its own chunk
+    Table<char> a(100 << 10), b(104 << 10);  // both in the 108 KiB class
+    Table<char> c(600 << 10);                // the 640 KiB class: its own chunk
     EXPECT_EQ(chunk(a.data()), chunk(b.data()));
     EXPECT_NE(chunk(a.data()), chunk(c.data()));
-    EXPECT_EQ(std::abs(a.data() - b.data()), 128 << 10);
-    EXPECT_EQ(metered.load(), (128 << 10) + (128 << 10) + (1024 << 10));
+    EXPECT_EQ(std::abs(a.data() - b.data()), 108 << 10);
+    EXPECT_EQ(metered.load(), (108 << 10) + (108 << 10) + (640 << 10));
     EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
     a.back() = 1;
     b.front() = 2;
     c.back() = 3;
     const char* a_block = a.data();
     a = Table<char>();         // freed: the chunk is still held by b
-    Table<char> d(128 << 10);  // takes a's block back, value-initialized
+    Table<char> d(106 << 10);  // takes a's block back, value-initialized
     EXPECT_EQ(d.data(), a_block);
     EXPECT_EQ(d[(100 << 10) - 1], 0);  // where a.back() wrote 1
   }
   EXPECT_EQ(metered.load(), 0);
-  EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);  // one empty chunk a class
+  EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);  // both kept, empty
   EXPECT_EQ(TableCacheBytesHeld(), 0u);          // not the cache's
   TrimTableCache(size_t{64} << 20);              // to the kernel
   EXPECT_EQ(TablePoolBytes(), 0u);
@@ -82,25 +82,26 @@ TEST(TableAllocatorTest, SmallTablesShareHugePageChunks) {
   SetTableMeter(nullptr);
 }
 
-// A class keeps one empty chunk, not two: the second goes to the cache
-// (here the kernel), and a table taken from the kept chunk uses it again.
-TEST(TableAllocatorTest, AClassKeepsOneEmptyChunk) {
+// Sixteen empty chunks stay, not more: the others go to the cache (here
+// the kernel), and a table taken from a kept chunk uses it again.
+TEST(TableAllocatorTest, UpToSixteenEmptyChunksAreKept) {
   if (!kMapTables) GTEST_SKIP() << "sanitizer build: tables on the heap";
   SetTableCacheBytes(0);
   TrimTableCache(0);
   ASSERT_EQ(TablePoolBytes(), 0u);
   {
-    std::vector<Table<char>> tables;  // 33 blocks of 64 KiB: two chunks
-    for (int i = 0; i < 33; ++i) tables.emplace_back(64 << 10);
-    EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
+    std::vector<Table<char>> tables;  // 18 chunks of 32 blocks of 64 KiB
+    for (int i = 0; i < 18 * 32; ++i) tables.emplace_back(64 << 10);
+    EXPECT_EQ(TablePoolBytes(), size_t{36} << 20);
   }
-  EXPECT_EQ(TablePoolBytes(), size_t{2} << 20);
+  EXPECT_EQ(TablePoolBytes(), size_t{32} << 20);
   {
-    Table<char> again(80 << 10);  // the 128 KiB class
-    Table<char> same(50 << 10);   // 64 KiB: from the kept chunk
-    EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);
+    Table<char> same(50 << 10);  // 64 KiB: from a kept chunk
+    EXPECT_EQ(TablePoolBytes(), size_t{32} << 20);
+    Table<char> other(80 << 10);  // a new class: a new chunk
+    EXPECT_EQ(TablePoolBytes(), size_t{34} << 20);
   }
-  EXPECT_EQ(TablePoolBytes(), size_t{4} << 20);  // both classes keep one
+  EXPECT_EQ(TablePoolBytes(), size_t{32} << 20);  // sixteen kept: one went
   TrimTableCache(0);
   EXPECT_EQ(TablePoolBytes(), 0u);
 }
