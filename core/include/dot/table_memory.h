@@ -9,18 +9,20 @@
 
 namespace dot {
 
-// Keeps up to `bytes` of freed tables for the next solves (default 0: all
-// are returned to the kernel at once, but for up to 16 empty 2 MiB chunks
-// of the tables under 1 MiB, 32 MiB, kept as malloc keeps its heap), so a
-// process that solves again and again reuses pages already faulted in. A table the kept blocks cannot
-// serve first returns as many of them. Thread-safe; lowering the limit
-// returns the excess at once. dot-server keeps half of --malloc-keep-mb,
-// dotctl 256 MiB.
+// Keeps up to `bytes` of freed tables of 2 MiB or more for the next
+// solves (default 0: all are returned to the kernel at once), so a process
+// that solves again and again reuses pages already faulted in. A table the
+// kept blocks cannot serve first returns as many of them. Thread-safe;
+// lowering the limit returns the excess at once. dot-server keeps half of
+// --malloc-keep-mb, dotctl 256 MiB. Smaller tables share 2 MiB chunks,
+// of which up to 16 (32 MiB) stay when empty whatever this limit, as
+// malloc keeps its heap.
 void SetTableCacheBytes(size_t bytes);
-// The freed table bytes kept now.
+// The freed table bytes kept now (not counting the small tables' chunks).
 size_t TableCacheBytesHeld();
-// Returns kept tables to the kernel, oldest first, until at most `bytes`
-// are kept (the limit is unchanged); the small tables' empty chunks first.
+// Returns every empty chunk of the small tables to the kernel, then kept
+// tables, oldest first, until at most `bytes` are kept (the limit is
+// unchanged).
 void TrimTableCache(size_t bytes);
 
 }  // namespace dot

@@ -131,7 +131,8 @@ void UnmapHuge(void* p, size_t size) noexcept {
 // zero fresh chunks each time (twice the adjacency build's time at
 // n = 1,024; a solve's tables span up to ten classes, and six kept chunks
 // still doubled it at n = 4,096). Further empty chunks go back to the
-// cache, which keeps them warm or returns them to the kernel.
+// kernel. Chunks bypass the table cache, which keeps larger tables: a
+// chunk taken from it would drop its oldest block on a miss.
 constexpr size_t kPoolLargest = kHuge / 2;
 constexpr int kClasses = 17;  // 64 KiB, 80 KiB, 92 KiB, 108 KiB, ..., 1 MiB
 constexpr size_t kKeptChunks = 16;
@@ -166,11 +167,13 @@ struct Pool {
       const size_t block = ClassBytes(c);
       const size_t per_chunk = kHuge / block;
       free[c].reserve((chunks[c] + 1) * per_chunk);
-      char* chunk = static_cast<char*>(MapHuge(kHuge));
+      // Mapped here, not taken from the cache: a chunk would drop the
+      // cache's oldest block on a miss, perhaps a large warm DP table.
+      char* chunk = static_cast<char*>(Map(kHuge));
       try {
         held.emplace(reinterpret_cast<uintptr_t>(chunk), 0);
       } catch (...) {
-        UnmapHuge(chunk, kHuge);
+        ::munmap(chunk, kHuge);
         throw;
       }
       ++chunks[c];
@@ -194,12 +197,13 @@ struct Pool {
       ++kept;
       return;
     }
-    Release(it, c, /*to_kernel=*/false);
+    Release(it, c);
   }
-  // Gives up an empty chunk of class c (its blocks leave the free list):
-  // to the cache, or straight to the kernel.
-  void Release(std::unordered_map<uintptr_t, uint32_t>::iterator it, int c,
-               bool to_kernel) noexcept {
+  // Returns an empty chunk of class c to the kernel (its blocks leave the
+  // free list); the kept chunks are the pool's warm memory, the cache is
+  // for larger tables.
+  void Release(std::unordered_map<uintptr_t, uint32_t>::iterator it,
+               int c) noexcept {
     const uintptr_t chunk = it->first;
     held.erase(it);
     --chunks[c];
@@ -207,11 +211,7 @@ struct Pool {
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](void* q) { return ChunkOf(q) == chunk; }),
                list.end());
-    if (to_kernel) {
-      ::munmap(reinterpret_cast<void*>(chunk), kHuge);
-    } else {
-      UnmapHuge(reinterpret_cast<void*>(chunk), kHuge);
-    }
+    ::munmap(reinterpret_cast<void*>(chunk), kHuge);
   }
   size_t Bytes() {
     std::lock_guard<std::mutex> lock(mutex);
@@ -227,7 +227,7 @@ struct Pool {
           ++it;
           continue;
         }
-        Release(chunk, c, /*to_kernel=*/true);  // erases from free[c]
+        Release(chunk, c);  // erases from free[c]
         --kept;
         it = free[c].begin();
       }
