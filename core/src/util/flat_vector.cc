@@ -110,15 +110,6 @@ void* Map(size_t size) {
   return p;
 }
 
-void* MapHuge(size_t size) {
-  void* p = TheCache().Take(size);
-  return p != nullptr ? p : Map(size);
-}
-
-void UnmapHuge(void* p, size_t size) noexcept {
-  if (!TheCache().Keep(p, size)) ::munmap(p, size);
-}
-
 // Tables of kPoolBytes to kPoolLargest share huge pages: a 2 MiB chunk
 // (2 MiB-aligned) is cut into blocks of one size class, so the first table
 // of a class faults once for the chunk instead of once per 4 KiB, and
@@ -255,8 +246,14 @@ size_t TableFootprint(size_t bytes) {
 void* AllocateTable(size_t bytes) {
   if (!kMapTables || bytes < kPoolBytes) return ::operator new(bytes);
   if (bytes > SIZE_MAX - kHuge) throw std::bad_alloc();
-  void* p = bytes <= kPoolLargest ? ThePool().Take(ClassOf(bytes))
-                                  : MapHuge(Rounded(bytes));
+  void* p = nullptr;
+  if (bytes <= kPoolLargest) {
+    p = ThePool().Take(ClassOf(bytes));
+  } else {
+    const size_t size = Rounded(bytes);
+    p = TheCache().Take(size);
+    if (p == nullptr) p = Map(size);
+  }
   Metered(static_cast<int64_t>(TableFootprint(bytes)));
   return p;
 }
@@ -269,8 +266,8 @@ void FreeTable(void* p, size_t bytes) noexcept {
   }
   if (bytes <= kPoolLargest) {
     ThePool().Give(p, ClassOf(bytes));
-  } else {
-    UnmapHuge(p, Rounded(bytes));
+  } else if (!TheCache().Keep(p, Rounded(bytes))) {
+    ::munmap(p, Rounded(bytes));
   }
   Metered(-static_cast<int64_t>(TableFootprint(bytes)));
 }
