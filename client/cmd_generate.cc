@@ -249,13 +249,16 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
   CLI::App* network = gen->add_subcommand(
       "network",
       "Write a curve network (OBJ polylines) for surface: 'cube' (its 12 "
-      "edges), 'cylinder' (two rims and a seam), or the rims of disk-shaped "
+      "edges), 'cylinder' (two rims and a seam), 'lid' (the cube and a "
+      "circle on its top face: an island), or the rims of disk-shaped "
       "patches cut from a closed MESH file (its surface is the reference)");
-  network->add_option("source", nf->source, "cube, cylinder, or a mesh file")
+  network
+      ->add_option("source", nf->source, "cube, cylinder, lid, or a mesh file")
       ->required();
   network
       ->add_option("-s,--segments", nf->segments,
-                   "cube: pieces per edge; cylinder: points per rim")
+                   "cube, lid: pieces per edge; cylinder: points per rim "
+                   "(lid: 6 times as many on its circle)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   network->add_option("-p,--patches", nf->patches, "mesh: patches to cut")
@@ -277,6 +280,8 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       net = CubeNetwork(nf->segments);
     } else if (nf->source == "cylinder") {
       net = CylinderNetwork(std::max(3, nf->segments), /*seam=*/true);
+    } else if (nf->source == "lid") {
+      net = LidNetwork(nf->segments, 6 * nf->segments);
     } else {
       MeshData mesh;
       s = ReadMeshFile(nf->source, &mesh);

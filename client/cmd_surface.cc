@@ -33,7 +33,7 @@ struct SurfaceFlags {
   bool absolute_weights = false;
   double density = 0;
   int fairing_continuity = 1;
-  std::string cycles_file;
+  std::string cycles_file, islands = "inset";
   bool skip_longest = false, ascii = false, json = false, local = false;
   uint32_t time_budget_ms = 0;
   std::vector<std::vector<std::vector<int32_t>>> cycles;  // 0-based
@@ -48,6 +48,9 @@ struct SurfaceFlags {
     o.set_density(density);
     o.set_fairing_continuity(fairing_continuity);
     o.set_skip_longest(skip_longest);
+    o.set_islands(islands == "hole"  ? v1::NETWORK_ISLANDS_HOLE
+                  : islands == "off" ? v1::NETWORK_ISLANDS_OFF
+                                     : v1::NETWORK_ISLANDS_INSET);
     o.set_time_budget_ms(time_budget_ms);
     for (const auto& patch : cycles) {
       v1::VertexCycle* c = o.add_cycles();
@@ -272,6 +275,13 @@ void AddSurfaceCommand(CLI::App& app, Context* ctx) {
       ->group("Patches");
   cmd->add_flag("--skip-longest", f->skip_longest,
                 "leave the longest found cycle open (an open sheet's rim)")
+      ->group("Patches");
+  cmd->add_option("--islands", f->islands,
+                  "a lone closed curve inside a found face: inset (an island "
+                  "of the face and a patch of its own), hole (an island "
+                  "only) or off (a patch of its own only)")
+      ->check(CLI::IsMember({"inset", "hole", "off"}))
+      ->capture_default_str()
       ->group("Patches");
   const std::string weights =
       "Metric weights (default: --squared-dihedral 1 --normal-deviation 0.25 "

@@ -20,6 +20,21 @@ Status SurfaceOptionsFromWire(const v1::SurfaceOptions& wire,
     o->fairing_continuity = wire.fairing_continuity();
   }
   o->skip_longest = wire.skip_longest();
+  switch (wire.islands()) {
+    case v1::NETWORK_ISLANDS_INSET:
+      o->islands = NetworkIslands::kInset;
+      break;
+    case v1::NETWORK_ISLANDS_HOLE:
+      o->islands = NetworkIslands::kHole;
+      break;
+    case v1::NETWORK_ISLANDS_OFF:
+      o->islands = NetworkIslands::kOff;
+      break;
+    default:
+      return InvalidArgument("unknown islands mode " +
+                             std::to_string(wire.islands()) +
+                             " (NETWORK_ISLANDS_INSET, _HOLE or _OFF)");
+  }
   for (const v1::VertexCycle& c : wire.cycles()) {
     std::vector<std::vector<int32_t>> loops;
     for (const v1::VertexLoop& l : c.loops()) {

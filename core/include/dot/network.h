@@ -114,6 +114,21 @@ struct NetworkCycle {
 std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
                                   const std::vector<CurveUse>& loop);
 
+// What a lone loop (a cycle alone in its part of the network: a closed
+// curve drawn on its own) bounds when it lies in a face of another part
+// (seen along that face's normal, every point inside the face's outer loop
+// and near its plane; nested loops pair inward):
+//  kInset  an island of that face (a second loop of its patch: the
+//          multi-loop solver) and a patch of its own, facing as the face
+//          does: a curve drawn on a face, the surface stays closed.
+//  kHole   an island of that face only: a hole in it.
+//  kOff    a patch of its own only (it overlaps the face around it, and
+//          the later of the two is left out where they cross).
+// A lone loop in no face (a tube's two rims, a loop in space) is a patch of
+// its own whatever the mode; give a tube as a cycle of two loops.
+enum class NetworkIslands { kInset, kHole, kOff };
+std::string_view NetworkIslandsName(NetworkIslands m);  // "inset", ...
+
 // The cycles of a rotation system: at each junction the curves are ordered
 // around a normal (given, or fitted to the curves' directions, signs made
 // to agree across the network), and each face of that embedding is a
@@ -123,12 +138,14 @@ std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
 // where three patches meet on one curve needs CyclesFromVertices. A face
 // that runs a path of curves one way and then back (a tube's seam, a curve
 // from a hole to its rim) is a cycle too: SurfaceNetwork cuts it in two
-// pieces by a new path whose points are new, faired vertices. `notes`
-// receives the faces left out (others that run a curve twice).
+// pieces by a new path whose points are new, faired vertices. Lone loops
+// in a face become its islands as `islands` says. `notes` receives the
+// faces left out (others that run a curve twice) and the islands paired.
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes = nullptr,
-                         const Control& control = {});
+                         const Control& control = {},
+                         NetworkIslands islands = NetworkIslands::kInset);
 
 // Cycles a user gives: per patch, loops of input vertex ids (as
 // CurveNetwork numbers them), each loop listing the vertices in order;
@@ -167,6 +184,8 @@ Status CyclesFromVertices(
 //                   FindNetworkCycles.
 //  skip_longest     leave out the automatic cycle with the most vertices
 //                   (the outer rim of an open sheet). Default false.
+//  islands          lone loops in a face of the automatic cycles (above):
+//                   kInset, kHole or kOff. Default kInset.
 //  threads          patches solved at once; 0: all cores. Default 0.
 struct SurfaceOptions {
   MetricWeights weights = DefaultSurfaceWeights();
@@ -177,6 +196,7 @@ struct SurfaceOptions {
   int fairing_continuity = 1;
   std::vector<std::vector<std::vector<int32_t>>> cycles;
   bool skip_longest = false;
+  NetworkIslands islands = NetworkIslands::kInset;
   int threads = 0;
 
   static MetricWeights DefaultSurfaceWeights();

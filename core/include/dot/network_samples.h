@@ -24,6 +24,11 @@ CurveNetwork CubeNetwork(int segments);
 // them at angle 0.
 CurveNetwork CylinderNetwork(int n, bool seam);
 
+// CubeNetwork(segments) and a circle of `n` (>= 3) points, radius 0.3,
+// centred on the top face (z = 1): a lone loop in a face, the face's island
+// (SurfaceOptions::islands).
+CurveNetwork LidNetwork(int segments, int n);
+
 // The edges of a polygon mesh's faces as curves, each split into
 // `segments` (>= 1) equal pieces (the faces of CGAL's 3torus.off give a
 // network of genus 3).

@@ -21,6 +21,7 @@
 #include <unordered_map>
 
 #include "dot/network.h"
+#include "network/islands.h"
 #include "network/seam.h"
 #include "util/run_control.h"
 
@@ -431,7 +432,7 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes,
-                         const Control& control) {
+                         const Control& control, NetworkIslands islands) {
   cycles->clear();
   RunTicker ticker(control, "the network's cycle search");
   std::vector<char> live(graph.curves.size(), 1);
@@ -571,6 +572,9 @@ Status FindNetworkCycles(const NetworkGraph& graph,
         cycles->push_back({{std::move(loop)}});
       }
     }
+  }
+  if (!PairIslands(graph, islands, cycles, notes, &ticker)) {
+    return ticker.status();
   }
   return OkStatus();
 }

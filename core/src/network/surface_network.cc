@@ -575,7 +575,8 @@ SurfaceResult Surface(const CurveNetwork& network,
   auto t = Clock::now();
   std::vector<NetworkCycle> cycles;
   s = options.cycles.empty()
-          ? FindNetworkCycles(g, &cycles, &report.notes, control)
+          ? FindNetworkCycles(g, &cycles, &report.notes, control,
+                              options.islands)
           : CyclesFromVertices(g, options.cycles, &cycles, control);
   if (!s.ok()) return fail(s);
   report.cycles_ms = MsSince(t);

@@ -61,6 +61,21 @@ CurveNetwork CylinderNetwork(int n, bool seam) {
   return net;
 }
 
+CurveNetwork LidNetwork(int segments, int n) {
+  CurveNetwork net = CubeNetwork(segments);
+  n = std::max(3, n);
+  std::vector<int32_t> line;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * kPi * k / n;
+    line.push_back(static_cast<int32_t>(net.vertices.size()));
+    net.vertices.push_back(
+        {0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a), 1.0});
+  }
+  line.push_back(line.front());
+  net.polylines.push_back(std::move(line));
+  return net;
+}
+
 CurveNetwork FaceEdgeNetwork(const PolygonSoup& soup, int segments) {
   segments = std::max(1, segments);
   CurveNetwork net;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <tuple>
@@ -167,6 +168,92 @@ TEST(NetworkCyclesTest, SeamFaceIsACycle) {
     }
   }
   EXPECT_EQ(tubes, 1);
+}
+
+// Adds a closed circle of n points around `centre` in the plane z =
+// centre.z; `clockwise` runs it the other way round.
+void AddCircle(CurveNetwork* net, Vec3 centre, double radius, int n,
+               bool clockwise) {
+  std::vector<int32_t> line;
+  for (int k = 0; k < n; ++k) {
+    const double a = (clockwise ? -2 : 2) * M_PI * k / n;
+    line.push_back(static_cast<int32_t>(net->vertices.size()));
+    net->vertices.push_back(
+        centre + Vec3{radius * std::cos(a), radius * std::sin(a), 0});
+  }
+  line.push_back(line.front());
+  net->polylines.push_back(std::move(line));
+}
+
+// Signed area of a loop seen from +z (positive: counter-clockwise).
+double AreaAlongZ(const NetworkGraph& g, const std::vector<CurveUse>& loop) {
+  const std::vector<int32_t> vs = LoopVertices(g, loop);
+  double twice = 0;
+  for (size_t k = 0; k < vs.size(); ++k) {
+    const Vec3& p = g.vertices[vs[k]];
+    const Vec3& q = g.vertices[vs[(k + 1) % vs.size()]];
+    twice += p.x * q.y - q.x * p.y;
+  }
+  return twice / 2;
+}
+
+// Three concentric circles in one plane, drawn either way round, and a
+// fourth above them: each of the three is an island of the next one out
+// (its loop run against that face's), and keeps a patch of its own facing
+// the same way; the one above is in no face (it is farther from the plane
+// than a quarter of the radius around it). With kHole the middle circle is
+// a hole of the outer face, and the inner one, in that hole, a disk of its
+// own; kOff pairs nothing.
+TEST(NetworkCyclesTest, LoneLoopsInAFaceAreItsIslands) {
+  CurveNetwork net;
+  AddCircle(&net, {0, 0, 0}, 1.0, 40, false);
+  AddCircle(&net, {0, 0, 0}, 0.6, 30, true);
+  AddCircle(&net, {0.05, 0, 0}, 0.3, 20, false);
+  AddCircle(&net, {0, 0, 0.5}, 0.2, 12, false);
+  NetworkGraph g;
+  ASSERT_TRUE(BuildNetworkGraph(net, &g).ok());
+  ASSERT_EQ(g.curves.size(), 4u);
+  for (NetworkIslands mode :
+       {NetworkIslands::kInset, NetworkIslands::kHole, NetworkIslands::kOff}) {
+    SCOPED_TRACE(std::string(NetworkIslandsName(mode)));
+    std::vector<NetworkCycle> cycles;
+    std::vector<std::string> notes;
+    ASSERT_TRUE(FindNetworkCycles(g, &cycles, &notes, {}, mode).ok());
+    std::map<int32_t, const NetworkCycle*> by_outer;
+    for (const NetworkCycle& c : cycles) by_outer[c.loops[0][0].curve] = &c;
+    if (mode == NetworkIslands::kOff) {
+      EXPECT_EQ(cycles.size(), 4u);
+      for (const NetworkCycle& c : cycles) EXPECT_EQ(c.loops.size(), 1u);
+      EXPECT_TRUE(notes.empty());
+      continue;
+    }
+    const bool hole = mode == NetworkIslands::kHole;
+    EXPECT_EQ(notes.size(), hole ? 1u : 2u);
+    ASSERT_EQ(cycles.size(), hole ? 3u : 4u);
+    const NetworkCycle& outer = *by_outer.at(0);
+    ASSERT_EQ(outer.loops.size(), 2u);
+    EXPECT_EQ(outer.loops[1][0].curve, 1);
+    EXPECT_LT(AreaAlongZ(g, outer.loops[0]) * AreaAlongZ(g, outer.loops[1]), 0);
+    ASSERT_EQ(by_outer.count(3), 1u);
+    EXPECT_EQ(by_outer.at(3)->loops.size(), 1u);  // above: no island
+    if (hole) {
+      // The middle circle is a hole; the inner one, inside it, is on no
+      // surface: a disk of its own.
+      EXPECT_EQ(by_outer.count(1), 0u);
+      ASSERT_EQ(by_outer.count(2), 1u);
+      EXPECT_EQ(by_outer.at(2)->loops.size(), 1u);
+      continue;
+    }
+    const NetworkCycle& middle = *by_outer.at(1);
+    ASSERT_EQ(middle.loops.size(), 2u);
+    EXPECT_EQ(middle.loops[1][0].curve, 2);
+    const double facing = AreaAlongZ(g, outer.loops[0]);
+    EXPECT_GT(AreaAlongZ(g, middle.loops[0]) * facing, 0);
+    EXPECT_LT(AreaAlongZ(g, middle.loops[1]) * facing, 0);
+    const NetworkCycle& inner = *by_outer.at(2);
+    ASSERT_EQ(inner.loops.size(), 1u);
+    EXPECT_GT(AreaAlongZ(g, inner.loops[0]) * facing, 0);
+  }
 }
 
 TEST(NetworkCyclesTest, UserCyclesByCornersOrEveryVertex) {

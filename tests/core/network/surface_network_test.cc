@@ -196,6 +196,46 @@ TEST(SurfaceNetworkTest, LoneRimsAreDisksAndDanglingCurvesAreReported) {
   EXPECT_EQ(CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles), 0);
 }
 
+// A circle drawn on the cube's lid: an island of the lid's patch and a
+// patch of its own, one closed surface at every stage (kInset); a hole in
+// the lid (kHole); or, with kOff as before, a disk of its own that
+// overlaps the lid: the surface stays valid but not closed.
+TEST(SurfaceNetworkTest, LoopOnAFaceIsAnIslandOfIt) {
+  const CurveNetwork net = LidNetwork(3, 24);
+  AtEveryStage(net, [&](FillStage, const SurfaceResult& r) {
+    ExpectClosedAndValid(net, r);
+    ASSERT_EQ(r.report.patches.size(), 7u);
+    int with_island = 0;
+    for (const PatchReport& p : r.report.patches) {
+      with_island += p.loops.size() == 2 ? 1 : 0;
+    }
+    EXPECT_EQ(with_island, 1);
+    EXPECT_EQ(ShapeOf(r.mesh).euler, 2);
+  });
+  SurfaceOptions o;
+  o.islands = NetworkIslands::kHole;
+  SurfaceResult r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.patches.size(), 6u);
+  EXPECT_EQ(r.report.surfaced, 6);
+  EXPECT_FALSE(r.report.closed);
+  Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 24);  // the circle's
+  EXPECT_EQ(c.non_manifold_edges, 0);
+  EXPECT_EQ(c.misoriented_edges, 0);
+  EXPECT_EQ(c.missing_curve_edges, 0);
+  EXPECT_EQ(c.intersecting_pairs, 0);
+  EXPECT_EQ(ShapeOf(r.mesh).euler, 1);  // a sphere less a disk
+
+  o.islands = NetworkIslands::kOff;
+  r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.patches.size(), 7u);
+  for (const PatchReport& p : r.report.patches) EXPECT_EQ(p.loops.size(), 1u);
+  EXPECT_FALSE(r.report.closed);
+  EXPECT_EQ(Check(net, r).intersecting_pairs, 0);
+}
+
 // A tube whose face runs its seam both ways: cut in two pieces by a new
 // path, the tube, its caps and the seam make one closed surface.
 TEST(SurfaceNetworkTest, CylinderWithASeamClosesAtEveryStage) {
