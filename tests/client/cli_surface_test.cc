@@ -85,6 +85,37 @@ TEST_F(SurfaceCliTest, JsonStagesStdinAndCycles) {
   EXPECT_NE(r.out.find("\"closed\":false"), std::string::npos) << r.out;
 }
 
+// A circle on the cube's lid: over the server an island of the lid and a
+// patch of its own (closed, genus 0), or with --islands hole a hole (exit
+// 0: the open surface is what was asked), the same locally.
+TEST_F(SurfaceCliTest, LoopOnAFaceIsAnIslandOrAHole) {
+  ASSERT_EQ(Dotctl("generate network lid -s 2 -o " + Path("lid.obj")).code, 0);
+  auto r = Dotctl(flag_ + "surface " + Path("lid.obj") + " -o " +
+                  Path("inset.ply") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":7"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("an island of it"), std::string::npos) << r.out;
+  MeshData inset;
+  ASSERT_TRUE(ReadMeshFile(Path("inset.ply"), &inset).ok());
+  EXPECT_EQ(ShapeOf(inset).euler, 2);
+  EXPECT_EQ(CountIntersectingPairs(inset.vertices, inset.triangles), 0);
+  for (const std::string& how :
+       {flag_ + "surface ", std::string("surface --local ")}) {
+    r = Dotctl(how + Path("lid.obj") + " --islands hole -o " +
+               Path("hole.ply") + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"surfaced\":6"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"closed\":false"), std::string::npos) << r.out;
+    MeshData hole;
+    ASSERT_TRUE(ReadMeshFile(Path("hole.ply"), &hole).ok());
+    EXPECT_EQ(ShapeOf(hole).euler, 1);
+  }
+  r = Dotctl(flag_ + "surface " + Path("lid.obj") + " --islands some -o -");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--islands"), std::string::npos) << r.out;
+}
+
 TEST_F(SurfaceCliTest, BadInputsAreNamed) {
   {
     std::ofstream bad(Path("bad.obj"));

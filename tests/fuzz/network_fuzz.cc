@@ -42,9 +42,12 @@ const dot::SurfaceOptions* g_options = nullptr;
 // The input being surfaced: its options and the network as OBJ.
 void PrintInput() {
   if (g_options != nullptr) {
-    std::fprintf(stderr, "stage %s, skip_longest %d, %zu user cycles:\n",
-                 std::string(dot::FillStageName(g_options->stage)).c_str(),
-                 g_options->skip_longest ? 1 : 0, g_options->cycles.size());
+    std::fprintf(
+        stderr, "stage %s, skip_longest %d, islands %s, %zu user cycles:\n",
+        std::string(dot::FillStageName(g_options->stage)).c_str(),
+        g_options->skip_longest ? 1 : 0,
+        std::string(dot::NetworkIslandsName(g_options->islands)).c_str(),
+        g_options->cycles.size());
     for (const auto& patch : g_options->cycles) {
       for (const auto& loop : patch) {
         std::fprintf(stderr, " |");
@@ -107,6 +110,8 @@ dot::CurveNetwork Decode(FuzzedDataProvider* in, dot::SurfaceOptions* o) {
     }
   }
   o->skip_longest = in->ConsumeBool();
+  o->islands =
+      static_cast<dot::NetworkIslands>(in->ConsumeIntegralInRange(0, 2));
   return net;
 }
 
