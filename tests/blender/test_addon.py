@@ -876,6 +876,32 @@ def test_surface_curves_turns_a_cube_of_splines_into_a_closed_box():
     check_mesh(bpy.context.active_object, boundary_edges=16)
 
 
+def test_surface_curves_circle_on_a_lid_is_an_island_or_a_hole():
+    clear_scene()
+    curve = cube_edges_curve("lid", segments=3)
+    circle = curve.data.splines.new('POLY')
+    circle.points.add(23)  # 24 points
+    for i, point in enumerate(circle.points):
+        a = 2 * math.pi * i / 24
+        point.co = (0.5 + 0.3 * math.cos(a), 0.5 + 0.3 * math.sin(a), 1, 1)
+    circle.use_cyclic_u = True
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves() == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert kwargs["options"].islands == "inset"
+    assert answer.report.closed and answer.report.surfaced == 7
+    assert sorted(len(p.loops) for p in answer.report.patches) == \
+        [1] * 6 + [2]
+    check_mesh(bpy.context.active_object, boundary_edges=0)
+    activate(curve)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(islands='HOLE') == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert kwargs["options"].islands == "hole"
+    assert answer.report.surfaced == 6 and not answer.report.closed
+    check_mesh(bpy.context.active_object, boundary_edges=24)
+
+
 def test_surface_curves_bezier_with_bevel_and_refusals():
     clear_scene()
     # A lone closed Bezier curve bounds a disk; its bevel is not sent (and

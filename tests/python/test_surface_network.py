@@ -204,6 +204,28 @@ def test_skip_longest_leaves_an_open_box(client):
         ["surfaced"] * 5
 
 
+def test_a_circle_on_a_face_is_its_island_or_a_hole(client):
+    v, lines = cube_network(3)
+    n = 24
+    t = 2 * np.pi * np.arange(n) / n
+    circle = np.c_[0.5 + 0.3 * np.cos(t), 0.5 + 0.3 * np.sin(t), np.ones(n)]
+    lines = lines + [list(range(len(v), len(v) + n)) + [len(v)]]
+    v = np.concatenate([v, circle])
+    inset = client.surface_network(v, lines)  # islands="inset", the default
+    check_surface(inset, v, lines)
+    rep = inset.report
+    assert rep.closed and rep.surfaced == 7 and euler(inset.faces) == 2
+    assert sorted(len(p.loops) for p in rep.patches) == [1] * 6 + [2]
+    assert any("an island of it" in note for note in rep.notes)
+    hole = client.surface_network(v, lines, islands="hole")
+    check_surface(hole, v, lines, borders=n)
+    assert not hole.report.closed and hole.report.surfaced == 6
+    assert euler(hole.faces) == 1
+    off = client.surface_network(v, lines, islands="off", stage="triangulate")
+    assert [len(p.loops) for p in off.report.patches] == [1] * 7
+    assert not off.report.closed
+
+
 def test_normals_travel_as_the_normal_channel(client):
     v, lines = cube_network(3)
     outward = v - 0.5
@@ -320,6 +342,7 @@ CUBE_V, CUBE_LINES = cube_network(2)
     (CUBE_V, CUBE_LINES, {"weights": {"area": 0}}, "every metric weight"),
     (CUBE_V, CUBE_LINES, {"weights": "shiny"}, "no weights preset"),
     (CUBE_V, CUBE_LINES, {"skip_longest": 1}, "skip_longest"),
+    (CUBE_V, CUBE_LINES, {"islands": "auto"}, "islands must be one of"),
     (CUBE_V, CUBE_LINES, {"time_budget_ms": -1}, "time_budget_ms"),
 ])
 def test_invalid_networks_are_refused_before_the_call(vertices, polylines,
@@ -338,6 +361,9 @@ def test_options_are_checked_when_made():
     assert o.stage == "refine"
     m = o.to_proto()
     assert m.stage == pb.FILL_STAGE_REFINE and m.density == 2
+    assert m.islands == pb.NETWORK_ISLANDS_INSET
+    assert dot_client.SurfaceOptions(islands="HOLE").to_proto().islands == \
+        pb.NETWORK_ISLANDS_HOLE
     assert [list(loop.vertices) for loop in m.cycles[0].loops] == \
         [[0, 1, 2, 3], [5, 6, 7]]
     assert not m.HasField("weights") and not m.HasField("fairing_continuity")

@@ -1049,6 +1049,15 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
         name="Skip Longest Cycle", default=False,
         description="Leave the longest cycle open (the rim of an open "
         "sheet: otherwise a second patch covers the sheet from behind)")
+    islands: EnumProperty(
+        name="Lone Loops", default='INSET',
+        description="A closed spline alone inside a face the other curves "
+        "bound (a circle drawn on a box's lid)",
+        items=[('INSET', "Inset", "An island of the face around it and a "
+                "patch of its own: the surface stays closed"),
+               ('HOLE', "Hole", "An island of the face around it only: a "
+                "hole in that face"),
+               ('OFF', "Own Patch", "A patch of its own only")])
     weld_distance: FloatProperty(
         name="Weld Distance", default=1e-6, min=0.0, max=0.01,
         precision=6,
@@ -1066,6 +1075,7 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
         layout = self.layout
         layout.prop(self, "stage")
         layout.prop(self, "skip_longest")
+        layout.prop(self, "islands")
         layout.prop(self, "weld_distance")
         layout.prop(self, "preset")
         self.draw_weights(layout, self.preset == 'CUSTOM')
@@ -1088,6 +1098,7 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
             return None
         options = dot_client.SurfaceOptions(
             stage=self.stage.lower(), skip_longest=self.skip_longest,
+            islands=self.islands.lower(),
             weights=None if self.preset == 'DEFAULT' else self.weights("fill"))
 
         def work(client, cancel, progress):

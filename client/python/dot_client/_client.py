@@ -842,6 +842,7 @@ class Client:
                         density: Optional[float] = None,
                         fairing_continuity: Optional[int] = None,
                         skip_longest: Optional[bool] = None,
+                        islands: Optional[str] = None,
                         time_budget_ms: Optional[int] = None,
                         memory_budget_bytes: Optional[int] = None,
                         progress: Optional[Callable[[SurfaceProgress],
@@ -874,7 +875,10 @@ class Client:
         :data:`WEIGHT_PRESETS` name or a dict) and single metric weights
         (``area``, ..., ``squared_dihedral``: the others count 0),
         ``absolute_weights``, ``density``, ``fairing_continuity``,
-        ``skip_longest``, ``time_budget_ms``, ``memory_budget_bytes``.
+        ``skip_longest``, ``islands`` (a closed curve alone inside a found
+        face: ``"inset"``, ``"hole"`` or ``"off"``; see
+        :class:`SurfaceOptions`), ``time_budget_ms``,
+        ``memory_budget_bytes``.
 
         ``progress(SurfaceProgress)`` is called once the cycles are found
         and as patches are triangulated; an exception it raises (also
@@ -897,7 +901,8 @@ class Client:
             squared_dihedral=squared_dihedral,
             absolute_weights=absolute_weights, density=density,
             fairing_continuity=fairing_continuity,
-            skip_longest=skip_longest, time_budget_ms=time_budget_ms,
+            skip_longest=skip_longest, islands=islands,
+            time_budget_ms=time_budget_ms,
             memory_budget_bytes=memory_budget_bytes)
         v = check.points("vertices", vertices)
         lines = check.polylines(polylines, len(v))

@@ -741,6 +741,7 @@ _SEARCH_SPACES = _enum_values(pb.SearchSpace, "SEARCH_SPACE_")
 _BACKENDS = _enum_values(pb.DelaunayBackend, "DELAUNAY_BACKEND_")
 # FILL_STAGE_DEFAULT is fair: the client names the stage it means.
 _FILL_STAGES = _enum_values(pb.FillStage, "FILL_STAGE_", skip=("default",))
+_NETWORK_ISLANDS = _enum_values(pb.NetworkIslands, "NETWORK_ISLANDS_")
 
 _O = TypeVar("_O", bound="_Options")
 
@@ -1059,7 +1060,11 @@ class SurfaceOptions(_Options):
     Empty (default): the server finds the cycles (a rotation system at the
     junctions; manifold networks of any genus; a closed curve alone bounds
     a disk). ``skip_longest``: leave the found cycle with the most vertices
-    open (the rim of an open sheet; default False).
+    open (the rim of an open sheet; default False). ``islands``: a closed
+    curve alone inside a found face (a circle drawn on a box's lid):
+    ``"inset"`` (default) makes it an island of that face and a patch of
+    its own, so the surface stays closed; ``"hole"`` an island only (a
+    hole in the face); ``"off"`` a patch of its own only.
     ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
     (0: the server's).
     """
@@ -1072,12 +1077,15 @@ class SurfaceOptions(_Options):
     fairing_continuity: Optional[int] = None
     cycles: Tuple[Tuple[Tuple[int, ...], ...], ...] = ()
     skip_longest: bool = False
+    islands: str = "inset"
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
 
     def __post_init__(self) -> None:
         _set(self, "stage", check.choice("stage", self.stage,
                                          list(_FILL_STAGES)))
+        _set(self, "islands", check.choice("islands", self.islands,
+                                           list(_NETWORK_ISLANDS)))
         if self.weights is not None:
             _set(self, "weights", _nonzero_weights(self.weights))
         _set(self, "absolute_weights", check.flag("absolute_weights",
@@ -1109,6 +1117,7 @@ class SurfaceOptions(_Options):
             for loop in patch:
                 c.loops.add().vertices.extend(loop)
         o.skip_longest = self.skip_longest
+        o.islands = _NETWORK_ISLANDS[self.islands]
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
         return o
