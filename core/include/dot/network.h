@@ -182,8 +182,9 @@ Status CyclesFromVertices(
 //                   bends. Default 1.
 //  cycles           patches given by the user (CyclesFromVertices); empty:
 //                   FindNetworkCycles.
-//  skip_longest     leave out the automatic cycle with the most vertices
-//                   (the outer rim of an open sheet). Default false.
+//  skip_longest     leave out the automatic cycle whose outer loop has the
+//                   most vertices (the outer rim of an open sheet; the
+//                   first of equals). Default false.
 //  islands          lone loops in a face of the automatic cycles (above):
 //                   kInset, kHole or kOff. Default kInset.
 //  threads          patches solved at once; 0: all cores. Default 0.

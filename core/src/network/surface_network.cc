@@ -639,12 +639,11 @@ SurfaceResult Surface(const CurveNetwork& network,
   }
   std::vector<int> todo;
   if (options.skip_longest && options.cycles.empty()) {
+    // By its outer loop: an island makes a face no longer (a sheet's back
+    // face is as long as its front, which may hold an island).
     size_t longest = 0;
     for (size_t p = 1; p < patch_count; ++p) {
-      if (report.patches[p].boundary_vertices >
-          report.patches[longest].boundary_vertices) {
-        longest = p;
-      }
+      if (work[p].loops[0].size() > work[longest].loops[0].size()) longest = p;
     }
     report.patches[longest].reason = "the longest cycle (skip_longest)";
   }
