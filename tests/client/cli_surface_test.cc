@@ -64,7 +64,7 @@ TEST_F(SurfaceCliTest, JsonStagesStdinAndCycles) {
                   Path("cube.off") + " --stage triangulate --json");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("\"outcome\":\"ok\""), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"surfaced\":6"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":6,"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
   // stdin to stdout.
   r = testing::RunShell("cat " + Path("cube.obj") + " | " +
@@ -93,7 +93,7 @@ TEST_F(SurfaceCliTest, LoopOnAFaceIsAnIslandOrAHole) {
   auto r = Dotctl(flag_ + "surface " + Path("lid.obj") + " -o " +
                   Path("inset.ply") + " --json");
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("\"surfaced\":7"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":7,"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("an island of it"), std::string::npos) << r.out;
   MeshData inset;
@@ -105,7 +105,7 @@ TEST_F(SurfaceCliTest, LoopOnAFaceIsAnIslandOrAHole) {
     r = Dotctl(how + Path("lid.obj") + " --islands hole -o " +
                Path("hole.ply") + " --json");
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("\"surfaced\":6"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"surfaced\":6,"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\"closed\":false"), std::string::npos) << r.out;
     MeshData hole;
     ASSERT_TRUE(ReadMeshFile(Path("hole.ply"), &hole).ok());

@@ -115,6 +115,13 @@ TEST(SurfaceNetworkServiceTest, BadNetworksAreRefusedNamingTheProblem) {
   o.set_density(-1);
   r = client::SurfaceRemote(*s.stub, "density", o, CubeNetwork(2), 30);
   EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  o = {};
+  o.set_islands(static_cast<v1::NetworkIslands>(7));  // a newer client's
+  r = client::SurfaceRemote(*s.stub, "islands", o, CubeNetwork(2), 30);
+  EXPECT_EQ(r.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(r.status.error_message().find("unknown islands mode 7"),
+            std::string::npos)
+      << r.status.error_message();
   // Still serving.
   r = client::SurfaceRemote(*s.stub, "after", {}, CubeNetwork(2), 30);
   EXPECT_TRUE(r.status.ok()) << r.status.error_message();

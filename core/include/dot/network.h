@@ -122,10 +122,11 @@ std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
 //          multi-loop solver) and a patch of its own, facing as the face
 //          does: a curve drawn on a face, the surface stays closed.
 //  kHole   an island of that face only: a hole in it.
-//  kOff    a patch of its own only (it overlaps the face around it, and
-//          the later of the two is left out where they cross).
+//  kOff    a patch of its own only (it overlaps the face around it: the
+//          crossing checks keep the two apart or leave one out).
 // A lone loop in no face (a tube's two rims, a loop in space) is a patch of
-// its own whatever the mode; give a tube as a cycle of two loops.
+// its own whatever the mode; give a tube as a cycle of two loops. Ignored
+// when the cycles are given.
 enum class NetworkIslands { kInset, kHole, kOff };
 std::string_view NetworkIslandsName(NetworkIslands m);  // "inset", ...
 
@@ -184,7 +185,8 @@ Status CyclesFromVertices(
 //                   FindNetworkCycles.
 //  skip_longest     leave out the automatic cycle whose outer loop has the
 //                   most vertices (the outer rim of an open sheet; the
-//                   first of equals). Default false.
+//                   first of equals; never an island's own patch). Default
+//                   false.
 //  islands          lone loops in a face of the automatic cycles (above):
 //                   kInset, kHole or kOff. Default kInset.
 //  threads          patches solved at once; 0: all cores. Default 0.

@@ -7,88 +7,40 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "network/outline.h"
 #include "network/seam.h"
 #include "util/union_find.h"
 
 namespace dot {
 namespace {
 
-// A face's outer loop as seen along its normal.
-struct Outline {
-  std::vector<int32_t> vertices;
-  Vec3 vector_area;  // half the sum of p_i x p_i+1 (Newell)
-  Vec3 centre, normal, u, v;
-  double area = 0;           // |vector_area|
-  double reach = 0;          // how far from its plane a point may lie in it
-  Vec3 lo, hi;               // bounding box, grown by reach
-  std::vector<double> x, y;  // the loop in the plane's (u, v) coordinates
-};
-
-Outline MakeOutline(const NetworkGraph& g, const std::vector<CurveUse>& loop) {
-  Outline o;
-  o.vertices = LoopVertices(g, loop);
-  const size_t n = o.vertices.size();
+// How far beyond the face's own distance from its plane the loop lies,
+// or -1 when the face does not hold it: a vertex outside it seen along its
+// normal, an edge crossing its outline there, the loop more than a quarter
+// of its own radius beyond the plane, or turned more than 45 degrees from
+// it. -2: the ticker says stop.
+double Excess(const NetworkGraph& g, const Outline& face, const Outline& loop,
+              RunTicker* ticker) {
+  if (std::abs(Dot(face.normal, loop.normal)) < std::sqrt(0.5)) return -1;
+  double excess = 0;
+  const size_t n = loop.vertices.size();
   for (size_t k = 0; k < n; ++k) {
-    const Vec3& p = g.vertices[o.vertices[k]];
-    const Vec3& q = g.vertices[o.vertices[(k + 1) % n]];
-    o.vector_area = o.vector_area + 0.5 * Cross(p, q);
-    o.centre = o.centre + (1.0 / static_cast<double>(n)) * p;
+    if (!ticker->Tick()) return -2;
+    const Vec3& p = g.vertices[loop.vertices[k]];
+    if (!Inside(face, p)) return -1;
+    excess = std::max(
+        excess, std::abs(Dot(p - face.centre, face.normal)) - face.off_plane);
   }
-  o.area = Norm(o.vector_area);
-  if (!(o.area > 0)) return o;
-  o.normal = (1.0 / o.area) * o.vector_area;
-  // Any unit vector across the normal, and the third of the frame.
-  const Vec3 axis = std::abs(o.normal.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  o.u = Normalized(Cross(o.normal, axis));
-  o.v = Cross(o.normal, o.u);
-  double off_plane = 0;
-  o.lo = o.hi = g.vertices[o.vertices[0]];
-  for (int32_t id : o.vertices) {
-    const Vec3 d = g.vertices[id] - o.centre;
-    off_plane = std::max(off_plane, std::abs(Dot(d, o.normal)));
-    o.x.push_back(Dot(d, o.u));
-    o.y.push_back(Dot(d, o.v));
-    const Vec3& p = g.vertices[id];
-    o.lo = {std::min(o.lo.x, p.x), std::min(o.lo.y, p.y),
-            std::min(o.lo.z, p.z)};
-    o.hi = {std::max(o.hi.x, p.x), std::max(o.hi.y, p.y),
-            std::max(o.hi.z, p.z)};
-  }
-  // A curved face's loop already leaves its plane; a quarter of the
-  // radius more lets a loop drawn on a gently domed face in, and keeps out
-  // a tube's far rim (a tube is rarely shorter than half its radius).
-  o.reach = off_plane + 0.25 * std::sqrt(o.area / M_PI);
-  const Vec3 grow{o.reach, o.reach, o.reach};
-  o.lo = o.lo - grow;
-  o.hi = o.hi + grow;
-  return o;
-}
-
-// Whether p is inside the outline seen along its normal (winding number).
-bool Inside(const Outline& o, const Vec3& p) {
-  const Vec3 d = p - o.centre;
-  if (std::abs(Dot(d, o.normal)) > o.reach) return false;
-  const double px = Dot(d, o.u), py = Dot(d, o.v);
-  int winding = 0;
-  const size_t n = o.x.size();
+  if (excess > 0.25 * loop.radius) return -1;
   for (size_t k = 0; k < n; ++k) {
-    const size_t m = (k + 1) % n;
-    const double side =
-        (o.x[m] - o.x[k]) * (py - o.y[k]) - (px - o.x[k]) * (o.y[m] - o.y[k]);
-    if (o.y[k] <= py) {
-      if (o.y[m] > py && side > 0) ++winding;
-    } else if (o.y[m] <= py && side < 0) {
-      --winding;
+    if (!ticker->Tick()) return -2;
+    if (CrossesOutline(face, g.vertices[loop.vertices[k]],
+                       g.vertices[loop.vertices[(k + 1) % n]])) {
+      return -1;
     }
   }
-  return winding != 0;
-}
-
-bool InBox(const Outline& o, const Vec3& p) {
-  return p.x >= o.lo.x && p.x <= o.hi.x && p.y >= o.lo.y && p.y <= o.hi.y &&
-         p.z >= o.lo.z && p.z <= o.hi.z;
+  return excess;
 }
 
 std::vector<CurveUse> Reversed(std::vector<CurveUse> loop) {
@@ -150,7 +102,10 @@ bool PairIslands(const NetworkGraph& g, NetworkIslands mode,
   for (size_t k = 0; k < count; ++k) {
     const NetworkCycle& c = (*cycles)[k];
     if (c.loops.size() != 1 || RunsACurveTwice(c.loops[0])) continue;
-    outlines[k] = MakeOutline(g, c.loops[0]);
+    // A curved face's loop already leaves its plane; a quarter of the
+    // radius more lets a loop drawn on a gently domed face in, and keeps
+    // out a tube's far rim (a tube is rarely shorter than half its radius).
+    outlines[k] = MakeOutline(g, LoopVertices(g, c.loops[0]), 0.25);
     usable[k] = outlines[k].area > 0;
     lone[k] = static_cast<int32_t>(c.loops[0].size()) == curves_in[part_of(c)];
   }
@@ -167,22 +122,24 @@ bool PairIslands(const NetworkGraph& g, NetworkIslands mode,
   std::vector<char> dropped(count, 0);
   std::vector<std::pair<size_t, std::string>> pairs;  // (host, loop's curves)
   for (size_t l : order) {
-    // The face it lies in: the smallest that holds every point of it.
+    // The face it lies in: of those that hold it, the nearest to it (a
+    // thin slab's lid, not its bottom), then the smallest (the ring just
+    // around it, not the disk around that).
     const int32_t part = part_of((*cycles)[l]);
+    const double tie = 1e-3 * outlines[l].radius;
     int32_t host = -1;
+    double host_excess = 0;
     for (size_t f = 0; f < count; ++f) {
       if (!usable[f] || part_of((*cycles)[f]) == part) continue;
-      if (host >= 0 && outlines[f].area >= outlines[host].area) continue;
-      bool inside = true;
-      for (int32_t id : outlines[l].vertices) {
-        if (!ticker->Tick()) return false;
-        const Vec3& p = g.vertices[id];
-        if (!InBox(outlines[f], p) || !Inside(outlines[f], p)) {
-          inside = false;
-          break;
-        }
+      const double excess = Excess(g, outlines[f], outlines[l], ticker);
+      if (excess == -2) return false;
+      if (excess < 0) continue;
+      if (host < 0 || excess < host_excess - tie ||
+          (excess <= host_excess + tie &&
+           outlines[f].area < outlines[host].area)) {
+        host = static_cast<int32_t>(f);
+        host_excess = excess;
       }
-      if (inside) host = static_cast<int32_t>(f);
     }
     // In no face, or in a hole (no surface there): a patch of its own.
     if (host < 0 || dropped[host]) continue;

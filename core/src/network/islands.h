@@ -13,15 +13,17 @@ namespace dot {
 // Lone loops into islands. A lone loop (a cycle alone in its part of the
 // network: a closed curve drawn on its own) lies in a face of another part
 // when, seen along that face's normal, every point of it is inside the
-// face's outer loop and near the face's plane (within the face's own
-// distance from its plane plus a quarter of its radius). It becomes an
-// island of the smallest such face (by vector area): a second loop of that
-// face's patch, run against it (the multi-loop solver joins them). kInset
-// keeps the loop's own patch, turned to face as that face does (a curve
-// drawn on a face: the surface stays closed); kHole drops it (a hole in
-// the face: a loop inside that hole is on no face); kOff changes nothing.
-// Nested loops pair inward. Each pairing is noted. False when the ticker
-// says stop.
+// face's outer loop and no edge of it crosses that loop, the two face
+// within 45 degrees of each other, and the loop is no farther from the
+// face's plane than the face's own loop is, plus a quarter of the smaller
+// of the two radii. It becomes an island of the nearest such face (then the
+// smallest, by vector area): a second loop of that face's patch, run
+// against it (the multi-loop solver joins them). kInset keeps the loop's
+// own patch, turned to face as that face does (a curve drawn on a face:
+// the surface stays closed); kHole drops it (a hole in the face: a loop
+// inside that hole is on no face); kOff changes nothing. Nested loops pair
+// inward; a face that runs a curve twice (a seam) holds none. Each pairing
+// is noted. False when the ticker says stop.
 bool PairIslands(const NetworkGraph& graph, NetworkIslands mode,
                  std::vector<NetworkCycle>* cycles,
                  std::vector<std::string>* notes, RunTicker* ticker);

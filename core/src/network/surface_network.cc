@@ -640,11 +640,23 @@ SurfaceResult Surface(const CurveNetwork& network,
   std::vector<int> todo;
   if (options.skip_longest && options.cycles.empty()) {
     // By its outer loop: an island makes a face no longer (a sheet's back
-    // face is as long as its front, which may hold an island).
-    size_t longest = 0;
-    for (size_t p = 1; p < patch_count; ++p) {
-      if (work[p].loops[0].size() > work[longest].loops[0].size()) longest = p;
+    // face is as long as its front, which may hold an island), and an
+    // island's own patch (inset) is never the rim.
+    std::set<int32_t> island_curves;
+    for (const NetworkCycle& c : cycles) {
+      for (size_t k = 1; k < c.loops.size(); ++k) {
+        for (const CurveUse& u : c.loops[k]) island_curves.insert(u.curve);
+      }
     }
+    int64_t longest = -1;
+    for (size_t p = 0; p < patch_count; ++p) {
+      if (island_curves.count(cycles[p].loops[0][0].curve)) continue;
+      if (longest < 0 ||
+          work[p].loops[0].size() > work[longest].loops[0].size()) {
+        longest = static_cast<int64_t>(p);
+      }
+    }
+    if (longest < 0) longest = 0;
     report.patches[longest].reason = "the longest cycle (skip_longest)";
   }
   for (size_t p = 0; p < patch_count; ++p) {

@@ -256,6 +256,43 @@ TEST(NetworkCyclesTest, LoneLoopsInAFaceAreItsIslands) {
   }
 }
 
+// A thin slab (1 x 1 x 0.1) with a circle on its lid: the lid holds it,
+// not the bottom (as large, and it holds it too seen along z), far from the
+// origin as well. A circle standing upright above the lid, and one flat
+// but above it by more than a quarter of its radius, are in no face.
+TEST(NetworkCyclesTest, IslandHostIsTheNearestFaceThatHoldsIt) {
+  for (double offset : {0.0, 1e8}) {
+    SCOPED_TRACE(offset);
+    CurveNetwork net = CubeNetwork(2);
+    for (Vec3& p : net.vertices) p.z *= 0.1;
+    AddCircle(&net, {0.5, 0.5, 0.1}, 0.3, 24, false);
+    AddCircle(&net, {0.3, 0.3, 0.13}, 0.1, 12, false);  // 0.03 > 0.1 / 4
+    const auto upright = static_cast<int32_t>(net.polylines.size());
+    AddCircle(&net, {0, 0, 0}, 0.1, 12, false);
+    for (int32_t v : net.polylines[upright]) {
+      Vec3& p = net.vertices[v];
+      p = {0.7 + p.x, 0.7, 0.3 + p.y};
+    }
+    for (Vec3& p : net.vertices) p = p + Vec3{offset, offset, offset};
+    NetworkGraph g;
+    ASSERT_TRUE(BuildNetworkGraph(net, &g).ok());
+    std::vector<NetworkCycle> cycles;
+    ASSERT_TRUE(FindNetworkCycles(g, &cycles).ok());
+    ASSERT_EQ(cycles.size(), 9u);  // 6 faces, 3 circles
+    int hosts = 0;
+    for (const NetworkCycle& c : cycles) {
+      if (c.loops.size() == 1) continue;
+      ++hosts;
+      ASSERT_EQ(c.loops.size(), 2u);
+      EXPECT_EQ(g.curves[c.loops[1][0].curve].vertices.size(), 25u);
+      for (int32_t v : LoopVertices(g, c.loops[0])) {
+        EXPECT_EQ(g.vertices[v].z, 0.1 + offset);  // the lid
+      }
+    }
+    EXPECT_EQ(hosts, 1);
+  }
+}
+
 TEST(NetworkCyclesTest, UserCyclesByCornersOrEveryVertex) {
   const CurveNetwork net = CubeNetwork(2);  // corners 0..7, midpoints 8..19
   NetworkGraph g;

@@ -236,6 +236,42 @@ TEST(SurfaceNetworkTest, LoopOnAFaceIsAnIslandOfIt) {
   EXPECT_EQ(Check(net, r).intersecting_pairs, 0);
 }
 
+// An open sheet of two squares with a circle in one: skip_longest leaves
+// out the sheet's back face (its outer loop the longest), never the
+// circle's own patch, though the circle has more points.
+TEST(SurfaceNetworkTest, SkipLongestNeverSkipsAnIslandsOwnPatch) {
+  CurveNetwork net;
+  net.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0},
+                  {2, 1, 0}, {1, 1, 0}, {0, 1, 0}};
+  net.polylines = {{1, 2, 3, 4}, {4, 5, 0, 1}, {1, 4}};
+  std::vector<int32_t> circle;
+  for (int k = 0; k < 40; ++k) {
+    const double a = 2 * M_PI * k / 40;
+    circle.push_back(static_cast<int32_t>(net.vertices.size()));
+    net.vertices.push_back(
+        {0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a), 0});
+  }
+  circle.push_back(circle.front());
+  net.polylines.push_back(circle);
+  SurfaceOptions o;
+  o.skip_longest = true;
+  const SurfaceResult r = SurfaceNetwork(net, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  ASSERT_EQ(r.report.patches.size(), 4u);
+  EXPECT_EQ(r.report.surfaced, 3);
+  EXPECT_EQ(r.report.failed, 0);
+  for (const PatchReport& p : r.report.patches) {
+    if (p.status == PatchStatus::kSkipped) {
+      EXPECT_EQ(p.loops.size(), 1u);
+      EXPECT_EQ(p.boundary_vertices, 6);  // the sheet's rim
+    }
+  }
+  const Checked c = Check(net, r);
+  EXPECT_EQ(c.border_edges, 6);
+  EXPECT_EQ(c.intersecting_pairs, 0);
+  EXPECT_EQ(c.missing_curve_edges, 0);
+}
+
 // A tube whose face runs its seam both ways: cut in two pieces by a new
 // path, the tube, its caps and the seam make one closed surface.
 TEST(SurfaceNetworkTest, CylinderWithASeamClosesAtEveryStage) {
