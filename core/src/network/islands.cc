@@ -17,9 +17,9 @@ namespace {
 
 // How far beyond the face's own distance from its plane the loop lies,
 // or -1 when the face does not hold it: a vertex outside it seen along its
-// normal, an edge crossing its outline there, the loop more than a quarter
-// of its own radius beyond the plane, or turned more than 45 degrees from
-// it. -2: the ticker says stop.
+// normal, an edge crossing its outline there, the loop farther beyond the
+// plane than its own radius (or a quarter of the face's: Inside), or
+// turned more than 45 degrees from it. -2: the ticker says stop.
 double Excess(const NetworkGraph& g, const Outline& face, const Outline& loop,
               RunTicker* ticker) {
   if (std::abs(Dot(face.normal, loop.normal)) < std::sqrt(0.5)) return -1;
@@ -32,7 +32,7 @@ double Excess(const NetworkGraph& g, const Outline& face, const Outline& loop,
     excess = std::max(
         excess, std::abs(Dot(p - face.centre, face.normal)) - face.off_plane);
   }
-  if (excess > 0.25 * loop.radius) return -1;
+  if (excess > loop.radius) return -1;
   for (size_t k = 0; k < n; ++k) {
     if (!ticker->Tick()) return -2;
     if (CrossesOutline(face, g.vertices[loop.vertices[k]],

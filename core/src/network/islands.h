@@ -15,8 +15,9 @@ namespace dot {
 // when, seen along that face's normal, every point of it is inside the
 // face's outer loop and no edge of it crosses that loop, the two face
 // within 45 degrees of each other, and the loop is no farther from the
-// face's plane than the face's own loop is, plus a quarter of the smaller
-// of the two radii. It becomes an island of the nearest such face (then the
+// face's plane than the face's own loop is, plus its own radius and plus a
+// quarter of the face's (a circle drawn on a domed face, not one floating
+// above a lid). It becomes an island of the nearest such face (then the
 // smallest, by vector area): a second loop of that face's patch, run
 // against it (the multi-loop solver joins them). kInset keeps the loop's
 // own patch, turned to face as that face does (a curve drawn on a face:

@@ -21,6 +21,11 @@ struct Outline {
   double reach = 0;          // how far from the plane a point may lie inside
   Vec3 lo, hi;               // bounding box, grown by reach
   std::vector<double> x, y;  // the loop in the plane's (u, v) coordinates
+  // Long loops: edge k (x[k], y[k]) -> (x[k+1], y[k+1]) listed in every band
+  // of v its span meets, so that a point or a short segment meets a few
+  // edges, not all (1,500 circles in a face of 20,000 points).
+  double band_v0 = 0, band_height = 0;
+  std::vector<std::vector<int32_t>> bands;
 };
 
 // `reach_fraction`: a point lies in the face up to off_plane plus this

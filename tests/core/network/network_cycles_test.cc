@@ -259,14 +259,14 @@ TEST(NetworkCyclesTest, LoneLoopsInAFaceAreItsIslands) {
 // A thin slab (1 x 1 x 0.1) with a circle on its lid: the lid holds it,
 // not the bottom (as large, and it holds it too seen along z), far from the
 // origin as well. A circle standing upright above the lid, and one flat
-// but above it by more than a quarter of its radius, are in no face.
+// but above it by more than its radius, are in no face.
 TEST(NetworkCyclesTest, IslandHostIsTheNearestFaceThatHoldsIt) {
   for (double offset : {0.0, 1e8}) {
     SCOPED_TRACE(offset);
     CurveNetwork net = CubeNetwork(2);
     for (Vec3& p : net.vertices) p.z *= 0.1;
     AddCircle(&net, {0.5, 0.5, 0.1}, 0.3, 24, false);
-    AddCircle(&net, {0.3, 0.3, 0.13}, 0.1, 12, false);  // 0.03 > 0.1 / 4
+    AddCircle(&net, {0.3, 0.3, 0.23}, 0.1, 12, false);  // 0.13 above: > 0.1
     const auto upright = static_cast<int32_t>(net.polylines.size());
     AddCircle(&net, {0, 0, 0}, 0.1, 12, false);
     for (int32_t v : net.polylines[upright]) {
@@ -290,6 +290,42 @@ TEST(NetworkCyclesTest, IslandHostIsTheNearestFaceThatHoldsIt) {
       }
     }
     EXPECT_EQ(hosts, 1);
+  }
+}
+
+// A square of 400 points (its edges looked up by bands) around a 10 x 10
+// grid of circles: each is an island of it; circles just over its rim, or
+// outside it, are not.
+TEST(NetworkCyclesTest, ManyIslandsInALongLoop) {
+  CurveNetwork net;
+  std::vector<int32_t> square;
+  for (int k = 0; k < 400; ++k) {
+    const double t = (k % 100) / 100.0 * 10;
+    const Vec3 corner[4] = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+    const Vec3 along[4] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+    square.push_back(static_cast<int32_t>(net.vertices.size()));
+    net.vertices.push_back(corner[k / 100] + t * along[k / 100]);
+  }
+  square.push_back(square.front());
+  net.polylines.push_back(square);
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      AddCircle(&net, {0.5 + i, 0.5 + j, 0}, 0.3, 16, (i + j) % 2 == 1);
+    }
+  }
+  AddCircle(&net, {10, 5, 0.02}, 0.3, 16, false);    // over the rim
+  AddCircle(&net, {5, -0.2, 0.02}, 0.3, 16, false);  // over the rim
+  AddCircle(&net, {12, 5, 0}, 0.3, 16, false);       // outside
+  NetworkGraph g;
+  ASSERT_TRUE(BuildNetworkGraph(net, &g).ok());
+  std::vector<NetworkCycle> cycles;
+  ASSERT_TRUE(FindNetworkCycles(g, &cycles).ok());
+  ASSERT_EQ(cycles.size(), 104u);
+  ASSERT_EQ(cycles[0].loops.size(), 101u);
+  for (size_t k = 1; k < cycles[0].loops.size(); ++k) {
+    EXPECT_LT(
+        AreaAlongZ(g, cycles[0].loops[0]) * AreaAlongZ(g, cycles[0].loops[k]),
+        0);
   }
 }
 
