@@ -130,23 +130,42 @@ std::vector<int32_t> LoopVertices(const NetworkGraph& graph,
 enum class NetworkIslands { kInset, kHole, kOff };
 std::string_view NetworkIslandsName(NetworkIslands m);  // "inset", ...
 
+// How FindNetworkCycles reads what a rotation system leaves open:
+//  islands  lone loops in a face (above). Default kInset.
+//  walls    also find walls: flat cycles that make a third patch on their
+//           curves (a partition inside a box). A ring of curves around a
+//           body is either a wall or only the line between two patches (a
+//           belt, a sketch's cross-section), and the curves alone cannot
+//           tell: walls are found only when asked. A wall turns, at each
+//           junction, between two curves no face found turns between (so
+//           only at junctions of four curves or more), has at most 8
+//           curves, lies flat (within 5 % of its radius of its plane) and
+//           holds no other point of the network (vertex or edge
+//           midpoint); smallest first, each such corner in one wall.
+//           Default false.
+struct CycleOptions {
+  NetworkIslands islands = NetworkIslands::kInset;
+  bool walls = false;
+};
+
 // The cycles of a rotation system: at each junction the curves are ordered
 // around a normal (given, or fitted to the curves' directions, signs made
 // to agree across the network), and each face of that embedding is a
 // cycle, so every curve that is not dangling bounds two patches, one on
 // each side, the cycles consistently oriented. A closed curve alone (no
-// junction) bounds one patch. Manifold networks of any genus; a network
-// where three patches meet on one curve needs CyclesFromVertices. A face
+// junction) bounds one patch. Manifold networks of any genus; where three
+// patches meet on one curve, walls (CycleOptions) or CyclesFromVertices. A
+// face
 // that runs a path of curves one way and then back (a tube's seam, a curve
 // from a hole to its rim) is a cycle too: SurfaceNetwork cuts it in two
-// pieces by a new path whose points are new, faired vertices. Lone loops
-// in a face become its islands as `islands` says. `notes` receives the
-// faces left out (others that run a curve twice) and the islands paired.
+// pieces by a new path whose points are new, faired vertices. Then walls
+// and islands as `options` say. `notes` receives the faces left out (others
+// that run a curve twice), the walls and the islands paired.
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes = nullptr,
                          const Control& control = {},
-                         NetworkIslands islands = NetworkIslands::kInset);
+                         const CycleOptions& options = {});
 
 // Cycles a user gives: per patch, loops of input vertex ids (as
 // CurveNetwork numbers them), each loop listing the vertices in order;
@@ -189,6 +208,8 @@ Status CyclesFromVertices(
 //                   false.
 //  islands          lone loops in a face of the automatic cycles (above):
 //                   kInset, kHole or kOff. Default kInset.
+//  walls            also find walls among the automatic cycles
+//                   (CycleOptions). Default false.
 //  threads          patches solved at once; 0: all cores. Default 0.
 struct SurfaceOptions {
   MetricWeights weights = DefaultSurfaceWeights();
@@ -200,6 +221,7 @@ struct SurfaceOptions {
   std::vector<std::vector<std::vector<int32_t>>> cycles;
   bool skip_longest = false;
   NetworkIslands islands = NetworkIslands::kInset;
+  bool walls = false;
   int threads = 0;
 
   static MetricWeights DefaultSurfaceWeights();

@@ -23,6 +23,7 @@
 #include "dot/network.h"
 #include "network/islands.h"
 #include "network/seam.h"
+#include "network/walls.h"
 #include "util/run_control.h"
 
 namespace dot {
@@ -432,7 +433,7 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes,
-                         const Control& control, NetworkIslands islands) {
+                         const Control& control, const CycleOptions& options) {
   cycles->clear();
   RunTicker ticker(control, "the network's cycle search");
   std::vector<char> live(graph.curves.size(), 1);
@@ -573,7 +574,8 @@ Status FindNetworkCycles(const NetworkGraph& graph,
       }
     }
   }
-  if (!PairIslands(graph, islands, cycles, notes, &ticker)) {
+  if ((options.walls && !FindWalls(graph, cycles, notes, &ticker)) ||
+      !PairIslands(graph, options.islands, cycles, notes, &ticker)) {
     return ticker.status();
   }
   return OkStatus();

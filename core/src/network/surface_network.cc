@@ -576,7 +576,7 @@ SurfaceResult Surface(const CurveNetwork& network,
   std::vector<NetworkCycle> cycles;
   s = options.cycles.empty()
           ? FindNetworkCycles(g, &cycles, &report.notes, control,
-                              options.islands)
+                              {options.islands, options.walls})
           : CyclesFromVertices(g, options.cycles, &cycles, control);
   if (!s.ok()) return fail(s);
   report.cycles_ms = MsSince(t);

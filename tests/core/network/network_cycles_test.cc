@@ -218,7 +218,7 @@ TEST(NetworkCyclesTest, LoneLoopsInAFaceAreItsIslands) {
     SCOPED_TRACE(std::string(NetworkIslandsName(mode)));
     std::vector<NetworkCycle> cycles;
     std::vector<std::string> notes;
-    ASSERT_TRUE(FindNetworkCycles(g, &cycles, &notes, {}, mode).ok());
+    ASSERT_TRUE(FindNetworkCycles(g, &cycles, &notes, {}, {mode, false}).ok());
     std::map<int32_t, const NetworkCycle*> by_outer;
     for (const NetworkCycle& c : cycles) by_outer[c.loops[0][0].curve] = &c;
     if (mode == NetworkIslands::kOff) {

@@ -144,7 +144,7 @@ TEST(SurfaceNetworkTest, CutMeshNetworksComeBackNearTheOriginal) {
 
 // Two boxes sharing a wall: the wall's four curves border three patches
 // each. Cycles given by the user (the faces' corners).
-TEST(SurfaceNetworkTest, NonManifoldNetworkFromUserCycles) {
+TEST(SurfaceNetworkTest, NonManifoldNetworkFoundOrGiven) {
   PolygonSoup soup;
   for (double x : {0.0, 0.5, 1.0}) {
     for (int k = 0; k < 4; ++k) {
@@ -167,33 +167,103 @@ TEST(SurfaceNetworkTest, NonManifoldNetworkFromUserCycles) {
     }
   }
   const CurveNetwork net = FaceEdgeNetwork(soup, 4);
-  SurfaceOptions o;
-  for (FaceView f : soup.faces) o.cycles.push_back({{f.begin(), f.end()}});
-  const SurfaceResult r = SurfaceNetwork(net, o);
-  ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_EQ(r.report.surfaced, 11);
-  EXPECT_TRUE(r.report.closed);
-  EXPECT_EQ(r.report.non_manifold_curves, 4);
-  const Checked c = Check(net, r);
-  EXPECT_EQ(c.border_edges, 0);
-  EXPECT_EQ(c.missing_curve_edges, 0);
-  EXPECT_EQ(c.intersecting_pairs, 0);
-  EXPECT_GT(c.non_manifold_edges, 0);  // along the wall's rim, by design
-  EXPECT_TRUE(c.finite);
+  SurfaceOptions given;
+  for (FaceView f : soup.faces) given.cycles.push_back({{f.begin(), f.end()}});
+  // Given, or found with walls: the faces a rotation system finds (the
+  // outer box), then the wall.
+  SurfaceOptions walls;
+  walls.walls = true;
+  for (const SurfaceOptions& o : {given, walls}) {
+    SCOPED_TRACE(o.cycles.empty() ? "found" : "given");
+    const SurfaceResult r = SurfaceNetwork(net, o);
+    ASSERT_TRUE(r.status.ok()) << r.status.message;
+    EXPECT_EQ(r.report.surfaced, 11);
+    EXPECT_TRUE(r.report.closed);
+    EXPECT_EQ(r.report.non_manifold_curves, 4);
+    const Checked c = Check(net, r);
+    EXPECT_EQ(c.border_edges, 0);
+    EXPECT_EQ(c.missing_curve_edges, 0);
+    EXPECT_EQ(c.intersecting_pairs, 0);
+    EXPECT_GT(c.non_manifold_edges, 0);  // along the wall's rim, by design
+    EXPECT_TRUE(c.finite);
+    if (o.cycles.empty()) {
+      // The wall is the square at x = 0.5 (vertices 4..7 and the points
+      // between them).
+      const PatchReport& wall = r.report.patches.back();
+      ASSERT_EQ(wall.loop_vertices.size(), 1u);
+      for (int32_t v : wall.loop_vertices[0]) {
+        EXPECT_EQ(net.vertices[v].x, 0.5) << v;
+      }
+    }
+  }
 }
 
-TEST(SurfaceNetworkTest, LoneRimsAreDisksAndDanglingCurvesAreReported) {
-  CurveNetwork net = CylinderNetwork(24, false);
-  // A tail from a rim vertex: it bounds nothing.
-  net.vertices.push_back({2, 0, 0});
-  net.polylines.push_back({0, static_cast<int32_t>(net.vertices.size() - 1)});
-  const SurfaceResult r = SurfaceNetwork(net);
+// Without walls, the same network is a 2 x 1 x 1 box whose long sides are
+// split at x = 1 (a belt: the curves alone cannot tell). With walls, a
+// square beside a box is no wall with it (three curves meet at its far
+// corners, each corner a face's), nor is the rim of a cube's top face
+// split into four triangles by its diagonals (its corners have four
+// curves, but the rim holds the centre).
+TEST(SurfaceNetworkTest, WallsOnlyWhenAskedAndWhereNothingLiesInThem) {
+  PolygonSoup box;
+  for (int x = 0; x < 3; ++x) {
+    for (int y = 0; y < 2; ++y) {
+      for (int z = 0; z < 2; ++z) {
+        box.vertices.push_back({static_cast<double>(x), static_cast<double>(y),
+                                static_cast<double>(z)});
+      }
+    }
+  }
+  // Vertex 4x + 2y + z; the 2 x 1 x 1 box's faces, its long sides split.
+  auto at = [](int x, int y, int z) { return 4 * x + 2 * y + z; };
+  box.faces.push_back({at(0, 0, 0), at(0, 1, 0), at(0, 1, 1), at(0, 0, 1)});
+  box.faces.push_back({at(2, 0, 0), at(2, 0, 1), at(2, 1, 1), at(2, 1, 0)});
+  for (int x = 0; x < 2; ++x) {
+    box.faces.push_back(
+        {at(x, 0, 0), at(x, 0, 1), at(x + 1, 0, 1), at(x + 1, 0, 0)});
+    box.faces.push_back(
+        {at(x, 1, 0), at(x + 1, 1, 0), at(x + 1, 1, 1), at(x, 1, 1)});
+    box.faces.push_back(
+        {at(x, 0, 0), at(x + 1, 0, 0), at(x + 1, 1, 0), at(x, 1, 0)});
+    box.faces.push_back(
+        {at(x, 0, 1), at(x, 1, 1), at(x + 1, 1, 1), at(x + 1, 0, 1)});
+  }
+  const CurveNetwork belt = FaceEdgeNetwork(box, 1);
+  SurfaceResult r = SurfaceNetwork(belt);
+  ExpectClosedAndValid(belt, r);
+  EXPECT_EQ(r.report.patches.size(), 10u);
+  EXPECT_EQ(r.report.non_manifold_curves, 0);
+
+  // Two unit squares side by side (z = 0) and a unit square above the
+  // right one (z = 1) joined to it by four edges: a box beside a square,
+  // with the left square's far edge split so that its corners have four
+  // curves.
+  PolygonSoup sheet;
+  sheet.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0},
+                    {0, 1, 0}, {1, 0, 1}, {2, 0, 1}, {2, 1, 1}, {1, 1, 1}};
+  sheet.faces = {{0, 1, 4, 5}, {1, 2, 3, 4}, {6, 9, 8, 7}, {1, 6, 7, 2},
+                 {2, 7, 8, 3}, {3, 8, 9, 4}, {4, 9, 6, 1}};
+  SurfaceOptions o;
+  o.walls = true;
+  o.stage = FillStage::kTriangulate;
+  const CurveNetwork open = FaceEdgeNetwork(sheet, 1);
+  r = SurfaceNetwork(open, o);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_EQ(r.report.patches.size(), 2u);  // one disk per rim, not two
-  EXPECT_EQ(r.report.dangling.size(), 1u);
-  EXPECT_EQ(r.report.surfaced, 2);
-  EXPECT_EQ(ShapeOf(r.mesh).pieces, 2);
-  EXPECT_EQ(CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles), 0);
+  EXPECT_EQ(r.report.non_manifold_curves, 0);
+  for (const std::string& note : r.report.notes) {
+    EXPECT_EQ(note.find("a wall"), std::string::npos) << note;
+  }
+  EXPECT_EQ(Check(open, r).intersecting_pairs, 0);
+
+  CurveNetwork diagonals = CubeNetwork(1);
+  diagonals.vertices.push_back({0.5, 0.5, 1});  // 8; 4..7: the top corners
+  diagonals.polylines.insert(diagonals.polylines.end(),
+                             {{4, 8}, {8, 7}, {5, 8}, {8, 6}});
+  r = SurfaceNetwork(diagonals, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.patches.size(), 9u);
+  EXPECT_EQ(r.report.non_manifold_curves, 0);
+  EXPECT_TRUE(r.report.closed);
 }
 
 // A circle drawn on the cube's lid: an island of the lid's patch and a
