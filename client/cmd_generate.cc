@@ -250,14 +250,18 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       "network",
       "Write a curve network (OBJ polylines) for surface: 'cube' (its 12 "
       "edges), 'cylinder' (two rims and a seam), 'lid' (the cube and a "
-      "circle on its top face: an island), or the rims of disk-shaped "
+      "circle on its top face: an island), 'partition' (two cubes side by "
+      "side: with --walls the square between them is a wall), or the rims "
+      "of disk-shaped "
       "patches cut from a closed MESH file (its surface is the reference)");
   network
-      ->add_option("source", nf->source, "cube, cylinder, lid, or a mesh file")
+      ->add_option("source", nf->source,
+                   "cube, cylinder, lid, partition, or a mesh file")
       ->required();
   network
       ->add_option("-s,--segments", nf->segments,
-                   "cube, lid: pieces per edge; cylinder: points per rim "
+                   "cube, lid, partition: pieces per edge; cylinder: "
+                   "points per rim "
                    "(lid: 6 times as many on its circle)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
@@ -282,6 +286,8 @@ void AddGenerateHolesCommand(CLI::App* gen, Context* ctx) {
       net = CylinderNetwork(std::max(3, nf->segments), /*seam=*/true);
     } else if (nf->source == "lid") {
       net = LidNetwork(nf->segments, 6 * nf->segments);
+    } else if (nf->source == "partition") {
+      net = PartitionNetwork(nf->segments);
     } else {
       MeshData mesh;
       s = ReadMeshFile(nf->source, &mesh);

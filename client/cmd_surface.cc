@@ -34,7 +34,8 @@ struct SurfaceFlags {
   double density = 0;
   int fairing_continuity = 1;
   std::string cycles_file, islands = "inset";
-  bool skip_longest = false, ascii = false, json = false, local = false;
+  bool skip_longest = false, walls = false, ascii = false, json = false,
+       local = false;
   uint32_t time_budget_ms = 0;
   std::vector<std::vector<std::vector<int32_t>>> cycles;  // 0-based
 
@@ -48,6 +49,7 @@ struct SurfaceFlags {
     o.set_density(density);
     o.set_fairing_continuity(fairing_continuity);
     o.set_skip_longest(skip_longest);
+    o.set_walls(walls);
     o.set_islands(islands == "hole"  ? v1::NETWORK_ISLANDS_HOLE
                   : islands == "off" ? v1::NETWORK_ISLANDS_OFF
                                      : v1::NETWORK_ISLANDS_INSET);
@@ -282,6 +284,12 @@ void AddSurfaceCommand(CLI::App& app, Context* ctx) {
                   "only) or off (a patch of its own only)")
       ->check(CLI::IsMember({"inset", "hole", "off"}))
       ->capture_default_str()
+      ->group("Patches");
+  cmd->add_flag("--walls", f->walls,
+                "also find walls: flat cycles that make a third patch on "
+                "their curves (a partition inside a box; without it a ring "
+                "of curves around a body is only a line between two "
+                "patches)")
       ->group("Patches");
   const std::string weights =
       "Metric weights (default: --squared-dihedral 1 --normal-deviation 0.25 "

@@ -20,6 +20,7 @@ Status SurfaceOptionsFromWire(const v1::SurfaceOptions& wire,
     o->fairing_continuity = wire.fairing_continuity();
   }
   o->skip_longest = wire.skip_longest();
+  o->walls = wire.walls();
   switch (wire.islands()) {
     case v1::NETWORK_ISLANDS_INSET:
       o->islands = NetworkIslands::kInset;

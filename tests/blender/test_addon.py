@@ -902,6 +902,38 @@ def test_surface_curves_circle_on_a_lid_is_an_island_or_a_hole():
     check_mesh(bpy.context.active_object, boundary_edges=24)
 
 
+def test_surface_curves_walls_only_when_asked():
+    clear_scene()
+    data = bpy.data.curves.new("partition", 'CURVE')
+    data.dimensions = '3D'
+    corners = [(x, y, z) for x in (0.0, 1.0, 2.0) for y in (0.0, 1.0)
+               for z in (0.0, 1.0)]
+    for a in range(12):
+        for b in range(a + 1, 12):
+            if sum(abs(p - q) for p, q in zip(corners[a], corners[b])) == 1:
+                spline = data.splines.new('POLY')
+                spline.points.add(1)
+                spline.points[0].co = (*corners[a], 1)
+                spline.points[1].co = (*corners[b], 1)
+    obj = bpy.data.objects.new("partition", data)
+    bpy.context.scene.collection.objects.link(obj)
+    activate(obj)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(stage='TRIANGULATE') \
+            == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert not kwargs["options"].walls
+    assert answer.report.surfaced == 10
+    activate(obj)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(stage='TRIANGULATE',
+                                               walls=True) == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert kwargs["options"].walls
+    assert answer.report.surfaced == 11
+    assert answer.report.non_manifold_curves == 4
+
+
 def test_surface_curves_bezier_with_bevel_and_refusals():
     clear_scene()
     # A lone closed Bezier curve bounds a disk; its bevel is not sent (and

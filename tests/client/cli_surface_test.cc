@@ -116,6 +116,24 @@ TEST_F(SurfaceCliTest, LoopOnAFaceIsAnIslandOrAHole) {
   EXPECT_NE(r.out.find("--islands"), std::string::npos) << r.out;
 }
 
+// Two cubes side by side: one box (10 patches) unless --walls, then the
+// square between them too, a third patch on each of its 4 curves.
+TEST_F(SurfaceCliTest, WallsOnlyWithTheFlag) {
+  ASSERT_EQ(Dotctl("generate network partition -s 2 -o " + Path("p.obj")).code,
+            0);
+  auto r = Dotctl(flag_ + "surface " + Path("p.obj") + " -o " +
+                  Path("box.ply") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":10,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"non_manifold_curves\":0"), std::string::npos);
+  r = Dotctl(flag_ + "surface " + Path("p.obj") + " --walls -o " +
+             Path("walls.ply") + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"surfaced\":11,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"non_manifold_curves\":4"), std::string::npos);
+  EXPECT_NE(r.out.find("a wall: patch 10"), std::string::npos) << r.out;
+}
+
 TEST_F(SurfaceCliTest, BadInputsAreNamed) {
   {
     std::ofstream bad(Path("bad.obj"));

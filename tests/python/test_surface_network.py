@@ -226,6 +226,25 @@ def test_a_circle_on_a_face_is_its_island_or_a_hole(client):
     assert not off.report.closed
 
 
+def test_walls_make_a_third_patch_only_when_asked(client):
+    # Two unit cubes side by side: their 20 edges, the square x = 1 shared.
+    corners = np.array([(x, y, z) for x in (0.0, 1.0, 2.0)
+                        for y in (0.0, 1.0) for z in (0.0, 1.0)])
+    lines = [[a, b] for a in range(12) for b in range(a + 1, 12)
+             if np.abs(corners[a] - corners[b]).sum() == 1]
+    assert len(lines) == 20
+    box = client.surface_network(corners, lines, stage="triangulate")
+    assert box.report.surfaced == 10 and box.report.closed
+    assert box.report.non_manifold_curves == 0
+    walls = client.surface_network(corners, lines, stage="triangulate",
+                                   walls=True)
+    assert walls.report.surfaced == 11 and walls.report.closed
+    assert walls.report.non_manifold_curves == 4
+    wall = walls.report.patches[-1]
+    assert all(corners[v][0] == 1.0 for v in wall.loops[0].vertices)
+    assert walls.report.intersecting_pairs == 0
+
+
 def test_normals_travel_as_the_normal_channel(client):
     v, lines = cube_network(3)
     outward = v - 0.5
@@ -343,6 +362,7 @@ CUBE_V, CUBE_LINES = cube_network(2)
     (CUBE_V, CUBE_LINES, {"weights": "shiny"}, "no weights preset"),
     (CUBE_V, CUBE_LINES, {"skip_longest": 1}, "skip_longest"),
     (CUBE_V, CUBE_LINES, {"islands": "auto"}, "islands must be one of"),
+    (CUBE_V, CUBE_LINES, {"walls": "yes"}, "walls"),
     (CUBE_V, CUBE_LINES, {"time_budget_ms": -1}, "time_budget_ms"),
 ])
 def test_invalid_networks_are_refused_before_the_call(vertices, polylines,

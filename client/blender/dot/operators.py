@@ -1058,6 +1058,11 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
                ('HOLE', "Hole", "An island of the face around it only: a "
                 "hole in that face"),
                ('OFF', "Own Patch", "A patch of its own only")])
+    walls: BoolProperty(
+        name="Walls", default=False,
+        description="Also find walls: flat cycles that make a third patch "
+        "on their curves (a partition inside a box). Off: a ring of curves "
+        "around a body is only the line between two patches")
     weld_distance: FloatProperty(
         name="Weld Distance", default=1e-6, min=0.0, max=0.01,
         precision=6,
@@ -1076,6 +1081,7 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
         layout.prop(self, "stage")
         layout.prop(self, "skip_longest")
         layout.prop(self, "islands")
+        layout.prop(self, "walls")
         layout.prop(self, "weld_distance")
         layout.prop(self, "preset")
         self.draw_weights(layout, self.preset == 'CUSTOM')
@@ -1098,7 +1104,7 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
             return None
         options = dot_client.SurfaceOptions(
             stage=self.stage.lower(), skip_longest=self.skip_longest,
-            islands=self.islands.lower(),
+            islands=self.islands.lower(), walls=self.walls,
             weights=None if self.preset == 'DEFAULT' else self.weights("fill"))
 
         def work(client, cancel, progress):

@@ -843,6 +843,7 @@ class Client:
                         fairing_continuity: Optional[int] = None,
                         skip_longest: Optional[bool] = None,
                         islands: Optional[str] = None,
+                        walls: Optional[bool] = None,
                         time_budget_ms: Optional[int] = None,
                         memory_budget_bytes: Optional[int] = None,
                         progress: Optional[Callable[[SurfaceProgress],
@@ -877,7 +878,8 @@ class Client:
         ``absolute_weights``, ``density``, ``fairing_continuity``,
         ``skip_longest``, ``islands`` (a closed curve alone inside a found
         face: ``"inset"``, ``"hole"`` or ``"off"``; see
-        :class:`SurfaceOptions`), ``time_budget_ms``,
+        :class:`SurfaceOptions`), ``walls`` (also find flat cycles that
+        make a third patch on their curves), ``time_budget_ms``,
         ``memory_budget_bytes``.
 
         ``progress(SurfaceProgress)`` is called once the cycles are found
@@ -901,7 +903,7 @@ class Client:
             squared_dihedral=squared_dihedral,
             absolute_weights=absolute_weights, density=density,
             fairing_continuity=fairing_continuity,
-            skip_longest=skip_longest, islands=islands,
+            skip_longest=skip_longest, islands=islands, walls=walls,
             time_budget_ms=time_budget_ms,
             memory_budget_bytes=memory_budget_bytes)
         v = check.points("vertices", vertices)

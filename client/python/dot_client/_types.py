@@ -1064,7 +1064,10 @@ class SurfaceOptions(_Options):
     curve alone inside a found face (a circle drawn on a box's lid):
     ``"inset"`` (default) makes it an island of that face and a patch of
     its own, so the surface stays closed; ``"hole"`` an island only (a
-    hole in the face); ``"off"`` a patch of its own only.
+    hole in the face); ``"off"`` a patch of its own only. ``walls``: also
+    find walls, flat cycles that make a third patch on their curves (a
+    partition inside a box; default False: a ring of curves around a body
+    is only the line between two patches).
     ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
     (0: the server's).
     """
@@ -1078,6 +1081,7 @@ class SurfaceOptions(_Options):
     cycles: Tuple[Tuple[Tuple[int, ...], ...], ...] = ()
     skip_longest: bool = False
     islands: str = "inset"
+    walls: bool = False
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
 
@@ -1086,6 +1090,7 @@ class SurfaceOptions(_Options):
                                          list(_FILL_STAGES)))
         _set(self, "islands", check.choice("islands", self.islands,
                                            list(_NETWORK_ISLANDS)))
+        _set(self, "walls", check.flag("walls", self.walls))
         if self.weights is not None:
             _set(self, "weights", _nonzero_weights(self.weights))
         _set(self, "absolute_weights", check.flag("absolute_weights",
@@ -1118,6 +1123,7 @@ class SurfaceOptions(_Options):
                 c.loops.add().vertices.extend(loop)
         o.skip_longest = self.skip_longest
         o.islands = _NETWORK_ISLANDS[self.islands]
+        o.walls = self.walls
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
         return o

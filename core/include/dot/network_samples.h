@@ -29,6 +29,11 @@ CurveNetwork CylinderNetwork(int n, bool seam);
 // (SurfaceOptions::islands).
 CurveNetwork LidNetwork(int segments, int n);
 
+// The edges of two unit cubes side by side, [0,2] x [0,1] x [0,1], each
+// split into `segments` (>= 1) pieces: the square at x = 1 is a partition
+// (SurfaceOptions::walls) or, without walls, a belt around one box.
+CurveNetwork PartitionNetwork(int segments);
+
 // The edges of a polygon mesh's faces as curves, each split into
 // `segments` (>= 1) equal pieces (the faces of CGAL's 3torus.off give a
 // network of genus 3).

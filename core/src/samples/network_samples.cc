@@ -76,6 +76,31 @@ CurveNetwork LidNetwork(int segments, int n) {
   return net;
 }
 
+CurveNetwork PartitionNetwork(int segments) {
+  PolygonSoup box;
+  for (int x = 0; x < 3; ++x) {
+    for (int y = 0; y < 2; ++y) {
+      for (int z = 0; z < 2; ++z) {
+        box.vertices.push_back({static_cast<double>(x), static_cast<double>(y),
+                                static_cast<double>(z)});
+      }
+    }
+  }
+  // Vertex 4x + 2y + z: the squares x = 0, 1, 2 (their edges are all the
+  // network has across x).
+  for (int x = 0; x < 3; ++x) {
+    box.faces.push_back({4 * x, 4 * x + 2, 4 * x + 3, 4 * x + 1});
+  }
+  for (int x = 0; x < 2; ++x) {  // the long edges, as squares' sides
+    for (int k : {0, 1, 3, 2}) {
+      const int next = k == 0 ? 1 : k == 1 ? 3 : k == 3 ? 2 : 0;
+      box.faces.push_back(
+          {4 * x + k, 4 * x + 4 + k, 4 * x + 4 + next, 4 * x + next});
+    }
+  }
+  return FaceEdgeNetwork(box, segments);
+}
+
 CurveNetwork FaceEdgeNetwork(const PolygonSoup& soup, int segments) {
   segments = std::max(1, segments);
   CurveNetwork net;

@@ -205,34 +205,18 @@ TEST(SurfaceNetworkTest, NonManifoldNetworkFoundOrGiven) {
 // split into four triangles by its diagonals (its corners have four
 // curves, but the rim holds the centre).
 TEST(SurfaceNetworkTest, WallsOnlyWhenAskedAndWhereNothingLiesInThem) {
-  PolygonSoup box;
-  for (int x = 0; x < 3; ++x) {
-    for (int y = 0; y < 2; ++y) {
-      for (int z = 0; z < 2; ++z) {
-        box.vertices.push_back({static_cast<double>(x), static_cast<double>(y),
-                                static_cast<double>(z)});
-      }
-    }
-  }
-  // Vertex 4x + 2y + z; the 2 x 1 x 1 box's faces, its long sides split.
-  auto at = [](int x, int y, int z) { return 4 * x + 2 * y + z; };
-  box.faces.push_back({at(0, 0, 0), at(0, 1, 0), at(0, 1, 1), at(0, 0, 1)});
-  box.faces.push_back({at(2, 0, 0), at(2, 0, 1), at(2, 1, 1), at(2, 1, 0)});
-  for (int x = 0; x < 2; ++x) {
-    box.faces.push_back(
-        {at(x, 0, 0), at(x, 0, 1), at(x + 1, 0, 1), at(x + 1, 0, 0)});
-    box.faces.push_back(
-        {at(x, 1, 0), at(x + 1, 1, 0), at(x + 1, 1, 1), at(x, 1, 1)});
-    box.faces.push_back(
-        {at(x, 0, 0), at(x + 1, 0, 0), at(x + 1, 1, 0), at(x, 1, 0)});
-    box.faces.push_back(
-        {at(x, 0, 1), at(x, 1, 1), at(x + 1, 1, 1), at(x + 1, 0, 1)});
-  }
-  const CurveNetwork belt = FaceEdgeNetwork(box, 1);
+  const CurveNetwork belt = PartitionNetwork(1);
   SurfaceResult r = SurfaceNetwork(belt);
   ExpectClosedAndValid(belt, r);
   EXPECT_EQ(r.report.patches.size(), 10u);
   EXPECT_EQ(r.report.non_manifold_curves, 0);
+  SurfaceOptions with_walls;
+  with_walls.walls = true;
+  r = SurfaceNetwork(belt, with_walls);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.surfaced, 11);
+  EXPECT_EQ(r.report.non_manifold_curves, 4);
+  EXPECT_EQ(Check(belt, r).intersecting_pairs, 0);
 
   // Two unit squares side by side (z = 0) and a unit square above the
   // right one (z = 1) joined to it by four edges: a box beside a square,
