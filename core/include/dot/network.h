@@ -108,6 +108,10 @@ struct CurveUse {
 // islands: the multi-loop solver joins them).
 struct NetworkCycle {
   std::vector<std::vector<CurveUse>> loops;
+  // Found as a wall (CycleOptions::walls): a third patch on its curves,
+  // facing either way, left out of the shared normals and of which way a
+  // closed surface faces.
+  bool wall = false;
 };
 
 // The graph vertices of a loop in order, its first junction once.

@@ -685,7 +685,8 @@ SurfaceResult Surface(const CurveNetwork& network,
     if (!s.ok()) return fail(s);
     normals.assign(g.vertices.size(), Vec3{});
     for (int p : todo) {
-      if (!first_status[p].ok()) continue;
+      // A wall faces either way: the patches around its curves decide.
+      if (!first_status[p].ok() || cycles[p].wall) continue;
       const PatchMesh& pm = work[p].dot;
       auto at = [&](int32_t v) -> const Vec3& {
         return v < first_new ? g.vertices[v] : pm.new_vertices[v - first_new];
@@ -989,9 +990,13 @@ SurfaceResult Surface(const CurveNetwork& network,
     if (uses[c] > 2) ++report.non_manifold_curves;
   }
   if (report.closed) {
-    // A closed surface faces out (the embedding's sign is arbitrary).
+    // A closed surface faces out (the embedding's sign is arbitrary). Its
+    // walls, open and facing either way, would add a volume that grows
+    // with their distance from the origin.
     double volume6 = 0;
-    for (const Triangle& tri : mesh.triangles) {
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+      if (cycles[owner[f]].wall) continue;
+      const Triangle& tri = mesh.triangles[f];
       volume6 += Dot(mesh.vertices[tri[0]],
                      Cross(mesh.vertices[tri[1]], mesh.vertices[tri[2]]));
     }

@@ -2,13 +2,12 @@
 // Walls: the patches a rotation system cannot give, where three patches or
 // more meet on a curve. In the spirit of Zhuang et al. (2013), who group
 // the curves at each junction into the corners of cycles: the corners the
-// faces found leave unused are where a further patch may turn.
+// rotation leaves out are where a further patch may turn.
 #include "network/walls.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
 
 #include "network/outline.h"
 
@@ -16,7 +15,7 @@ namespace dot {
 namespace {
 
 constexpr int kMaxWallCurves = 8;
-constexpr int64_t kMaxSteps = 200000;
+constexpr int64_t kStepsPerStart = 20000;
 constexpr double kFlat = 0.05;  // off its plane, per radius
 
 // Dart 2c + e: curve c leaving from its first vertex (e = 0) or its last.
@@ -40,9 +39,9 @@ struct Search {
   std::set<std::vector<int32_t>> seen;      // their sorted curves
   std::vector<int32_t> path;                // darts so far
   std::set<int32_t> visited;                // junctions so far
-  int64_t steps = 0;
-  bool stopped = false;  // by the ticker
-  bool cut = false;      // by the step bound
+  int64_t steps = 0;                        // from the current start
+  bool stopped = false;                     // by the ticker
+  bool cut = false;                         // a start ran out of steps
 
   bool Unused(int32_t a, int32_t b) const {
     return a / 2 != b / 2 && !used.count(Corner(a, b));
@@ -50,8 +49,8 @@ struct Search {
 
   // `path` leaves junction `start` by path[0]; extend it from its end.
   void Extend(int32_t start) {
-    if (stopped || cut) return;
-    if (++steps > kMaxSteps) {
+    if (stopped || steps > kStepsPerStart) return;
+    if (++steps > kStepsPerStart) {
       cut = true;
       return;
     }
@@ -86,9 +85,12 @@ struct Search {
   }
 };
 
-// Whether the cycle lies flat and holds no other point of the network.
-bool IsWall(const NetworkGraph& g, const std::vector<int32_t>& darts,
-            const std::vector<char>& live, double* flatness) {
+// Whether the cycle lies flat and holds no other point of the network: no
+// vertex or edge midpoint of another curve (dangling ones too) inside it,
+// no edge through it, or across its rim in its plane. -1: the ticker says
+// stop.
+int IsWall(const NetworkGraph& g, const std::vector<int32_t>& darts,
+           RunTicker* ticker, double* flatness) {
   std::vector<CurveUse> loop;
   std::set<int32_t> own;
   for (int32_t d : darts) {
@@ -96,41 +98,44 @@ bool IsWall(const NetworkGraph& g, const std::vector<int32_t>& darts,
     own.insert(d / 2);
   }
   const Outline o = MakeOutline(g, LoopVertices(g, loop), kFlat);
-  if (!(o.area > 0) || o.off_plane > kFlat * o.radius) return false;
+  if (!(o.area > 0) || o.off_plane > kFlat * o.radius) return 0;
   *flatness = o.off_plane / o.radius;
   const std::set<int32_t> rim(o.vertices.begin(), o.vertices.end());
+  auto height = [&](const Vec3& p) { return Dot(p - o.centre, o.normal); };
   for (size_t c = 0; c < g.curves.size(); ++c) {
-    if (!live[c] || own.count(static_cast<int32_t>(c))) continue;
+    if (!ticker->Tick()) return -1;
+    if (own.count(static_cast<int32_t>(c))) continue;
     const auto& vs = g.curves[c].vertices;
     for (size_t k = 0; k < vs.size(); ++k) {
       const Vec3& p = g.vertices[vs[k]];
       // A curve's end on the wall's rim is no point inside it.
-      if (!rim.count(vs[k]) && Inside(o, p)) return false;
-      if (k + 1 < vs.size() && Inside(o, 0.5 * (p + g.vertices[vs[k + 1]]))) {
-        return false;
+      if (!rim.count(vs[k]) && Inside(o, p)) return 0;
+      if (k + 1 == vs.size()) continue;
+      const Vec3& q = g.vertices[vs[k + 1]];
+      const double hp = height(p), hq = height(q);
+      if (Inside(o, 0.5 * (p + q))) return 0;
+      if (std::abs(hp) <= o.reach && std::abs(hq) <= o.reach &&
+          CrossesOutline(o, p, q)) {
+        return 0;  // in its plane, across its rim
+      }
+      if ((hp > o.reach && hq < -o.reach) || (hp < -o.reach && hq > o.reach)) {
+        if (Inside(o, p + (hp / (hp - hq)) * (q - p))) return 0;  // through
       }
     }
   }
-  return true;
+  return 1;
 }
 
 }  // namespace
 
-bool FindWalls(const NetworkGraph& g, std::vector<NetworkCycle>* cycles,
+bool FindWalls(const NetworkGraph& g,
+               const std::set<std::pair<int32_t, int32_t>>& used,
+               std::vector<NetworkCycle>* cycles,
                std::vector<std::string>* notes, RunTicker* ticker) {
-  std::set<std::pair<int32_t, int32_t>> used;
   std::vector<char> live(g.curves.size(), 0);
   for (const NetworkCycle& c : *cycles) {
     for (const auto& loop : c.loops) {
-      for (size_t k = 0; k < loop.size(); ++k) {
-        const CurveUse& u = loop[k];
-        const CurveUse& next = loop[(k + 1) % loop.size()];
-        live[u.curve] = 1;
-        // Arriving by u's far end, leaving by next's near end.
-        const int32_t arrive = 2 * u.curve + (u.reversed ? 0 : 1);
-        const int32_t leave = 2 * next.curve + (next.reversed ? 1 : 0);
-        used.insert(Corner(arrive, leave));
-      }
+      for (const CurveUse& u : loop) live[u.curve] = 1;
     }
   }
   std::map<int32_t, std::vector<int32_t>> darts_at;
@@ -143,7 +148,8 @@ bool FindWalls(const NetworkGraph& g, std::vector<NetworkCycle>* cycles,
   }
   Search search{g, used, darts_at, ticker, {}, {}, {}, {}};
   for (const auto& [at, darts] : darts_at) {
-    if (darts.size() < 4) continue;  // three curves: every corner is a face's
+    if (darts.size() < 4) continue;  // three curves: every corner is used
+    search.steps = 0;
     for (int32_t d : darts) {
       search.path = {d};
       search.visited = {at};
@@ -153,12 +159,12 @@ bool FindWalls(const NetworkGraph& g, std::vector<NetworkCycle>* cycles,
   if (search.stopped) return false;
   if (search.cut && notes != nullptr) {
     notes->push_back(
-        "the search for walls (a third patch on a curve) "
-        "stopped after " +
-        std::to_string(kMaxSteps) + " steps");
+        "the search for walls (a third patch on a curve) stopped after " +
+        std::to_string(kStepsPerStart) +
+        " steps from some junctions: walls through them may be missing");
   }
 
-  // Smallest and flattest first; each unused corner in one wall.
+  // Smallest and flattest first.
   struct Candidate {
     size_t index;
     double flatness;
@@ -166,27 +172,44 @@ bool FindWalls(const NetworkGraph& g, std::vector<NetworkCycle>* cycles,
   std::vector<Candidate> walls;
   for (size_t k = 0; k < search.found.size(); ++k) {
     double flatness = 0;
-    if (IsWall(g, search.found[k], live, &flatness)) {
-      walls.push_back({k, flatness});
-    }
+    const int is = IsWall(g, search.found[k], ticker, &flatness);
+    if (is < 0) return false;
+    if (is > 0) walls.push_back({k, flatness});
   }
   std::sort(walls.begin(), walls.end(), [&](const auto& a, const auto& b) {
     const size_t la = search.found[a.index].size();
     const size_t lb = search.found[b.index].size();
     return la != lb ? la < lb : a.flatness < b.flatness;
   });
+  // Each corner in one wall; and two walls through one junction that share
+  // no curve there cross (curves that cross share a vertex), as a + of
+  // partitions whose centre line no curve draws: the later is left out.
   std::set<std::pair<int32_t, int32_t>> taken;
+  std::map<int32_t, std::vector<std::pair<int32_t, int32_t>>> walls_at;
   for (const Candidate& w : walls) {
     const auto& darts = search.found[w.index];
     std::vector<std::pair<int32_t, int32_t>> corners;
+    std::vector<std::pair<int32_t, std::pair<int32_t, int32_t>>> at;
     for (size_t k = 0; k < darts.size(); ++k) {
-      corners.push_back(Corner(darts[k] ^ 1, darts[(k + 1) % darts.size()]));
+      const int32_t next = darts[(k + 1) % darts.size()];
+      corners.push_back(Corner(darts[k] ^ 1, next));
+      at.push_back({JunctionOf(g, next), {darts[k] / 2, next / 2}});
     }
-    if (std::any_of(corners.begin(), corners.end(),
-                    [&](const auto& c) { return taken.count(c) > 0; })) {
-      continue;
+    bool clash = std::any_of(corners.begin(), corners.end(),
+                             [&](const auto& c) { return taken.count(c); });
+    for (const auto& [junction, mine] : at) {
+      for (const auto& other : walls_at[junction]) {
+        const bool share =
+            mine.first == other.first || mine.first == other.second ||
+            mine.second == other.first || mine.second == other.second;
+        clash = clash || !share;
+      }
     }
+    if (clash) continue;
     taken.insert(corners.begin(), corners.end());
+    for (const auto& [junction, mine] : at) {
+      walls_at[junction].push_back(mine);
+    }
     std::vector<CurveUse> loop;
     std::string ids;
     for (int32_t d : darts) {
@@ -194,11 +217,10 @@ bool FindWalls(const NetworkGraph& g, std::vector<NetworkCycle>* cycles,
       ids += (ids.empty() ? "" : " ") + std::to_string(d / 2);
     }
     if (notes != nullptr) {
-      notes->push_back("a wall: patch " + std::to_string(cycles->size()) +
-                       " (curves " + ids +
+      notes->push_back("a wall (curves " + ids +
                        ") makes a third patch on each of its curves");
     }
-    cycles->push_back({{std::move(loop)}});
+    cycles->push_back({{std::move(loop)}, /*wall=*/true});
   }
   return true;
 }

@@ -2,7 +2,9 @@
 #ifndef DOT_CORE_NETWORK_WALLS_H_
 #define DOT_CORE_NETWORK_WALLS_H_
 
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dot/network.h"
@@ -13,18 +15,23 @@ namespace dot {
 // Walls (CycleOptions::walls): patches that make a third (or further)
 // patch on their curves, as a partition inside a box. A rotation system
 // gives every curve two faces, so the faces found leave a wall out; its
-// trace is left at the junctions:
-// at each of its corners the wall turns between two curves that no face
-// turns between (a corner the faces leave unused, which only junctions of
-// four curves or more have). A wall is a cycle of at most 8 curves, its
-// junctions distinct, that turns only at unused corners, lies flat (every
-// point within 5 % of its radius of its plane) and holds no other point of
-// the network, vertex or edge midpoint (else it would be the outline of
-// faces found, two coplanar squares side by side). Walls are taken
-// smallest first, each unused corner by one wall at most, appended to
-// `cycles` and noted. The search is bounded (200,000 steps; a note says
-// when it stopped early). False when the ticker says stop.
-bool FindWalls(const NetworkGraph& graph, std::vector<NetworkCycle>* cycles,
+// trace is left at the junctions: at each of its corners the wall turns
+// between two curves that are not neighbours in the rotation (`used`: the
+// neighbouring dart pairs, dart 2c + end), which only junctions of four
+// curves or more have. A wall is a cycle of at most 8 curves (no closed
+// curve), its junctions distinct, that turns only at such corners, lies
+// flat (every point within 5 % of its radius of its plane) and holds no
+// other point of the network: no vertex or edge midpoint of another curve
+// inside it (else it would be the outline of faces found, a face's rim
+// around its diagonals), no edge through it or across its rim. Walls are
+// taken smallest first, each corner in one wall at most, and a wall that
+// meets a taken one at a junction without a curve in common there (they
+// cross) is left out. Walls are appended to `cycles` (NetworkCycle::wall)
+// and noted. The search takes at most 20,000 steps from each junction (a
+// note says when one ran out). False when the ticker says stop.
+bool FindWalls(const NetworkGraph& graph,
+               const std::set<std::pair<int32_t, int32_t>>& used,
+               std::vector<NetworkCycle>* cycles,
                std::vector<std::string>* notes, RunTicker* ticker);
 
 }  // namespace dot

@@ -217,6 +217,58 @@ TEST(SurfaceNetworkTest, WallsOnlyWhenAskedAndWhereNothingLiesInThem) {
   EXPECT_EQ(r.report.surfaced, 11);
   EXPECT_EQ(r.report.non_manifold_curves, 4);
   EXPECT_EQ(Check(belt, r).intersecting_pairs, 0);
+  // Far from the origin it still faces out: the wall, open, is left out of
+  // the volume that says which way.
+  CurveNetwork far = belt;
+  for (Vec3& p : far.vertices) p = p + Vec3{100, 0, 0};
+  r = SurfaceNetwork(far, with_walls);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  ASSERT_TRUE(r.report.closed);
+  double volume6 = 0;
+  for (const Triangle& t : r.mesh.triangles) {
+    const Vec3 &a = r.mesh.vertices[t[0]], &b = r.mesh.vertices[t[1]],
+               &c = r.mesh.vertices[t[2]];
+    if (a.x == 101 && b.x == 101 && c.x == 101) continue;  // the wall
+    volume6 += Dot(a - Vec3{101, 0.5, 0.5},
+                   Cross(b - Vec3{101, 0.5, 0.5}, c - Vec3{101, 0.5, 0.5}));
+  }
+  EXPECT_NEAR(volume6, 12, 1e-9);  // 6 x the box's volume, 2: outward
+
+  // A 2 x 2 x 1 block whose partitions cross on a line no curve draws:
+  // the second wall meets the first at two junctions without a curve in
+  // common there, so it is left out; the surface stays valid.
+  PolygonSoup block;
+  auto id = [](int x, int y, int z) { return 9 * z + 3 * y + x; };
+  for (int z = 0; z < 2; ++z) {
+    for (int y = 0; y < 3; ++y) {
+      for (int x = 0; x < 3; ++x) {
+        block.vertices.push_back({static_cast<double>(x),
+                                  static_cast<double>(y),
+                                  static_cast<double>(z)});
+      }
+    }
+  }
+  for (int a = 0; a < 2; ++a) {
+    for (int b = 0; b < 2; ++b) {
+      block.faces.push_back({id(a, b, 0), id(a, b + 1, 0), id(a + 1, b + 1, 0),
+                             id(a + 1, b, 0)});  // bottom
+      block.faces.push_back({id(a, b, 1), id(a + 1, b, 1), id(a + 1, b + 1, 1),
+                             id(a, b + 1, 1)});  // top
+    }
+    for (int side : {0, 2}) {
+      block.faces.push_back({id(side, a, 0), id(side, a + 1, 0),
+                             id(side, a + 1, 1), id(side, a, 1)});
+      block.faces.push_back({id(a, side, 0), id(a + 1, side, 0),
+                             id(a + 1, side, 1), id(a, side, 1)});
+    }
+  }
+  const CurveNetwork plus = FaceEdgeNetwork(block, 1);
+  r = SurfaceNetwork(plus, with_walls);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_EQ(r.report.patches.size(), 17u);
+  EXPECT_EQ(r.report.non_manifold_curves, 6);
+  EXPECT_EQ(r.report.failed, 0);
+  EXPECT_EQ(Check(plus, r).intersecting_pairs, 0);
 
   // Two unit squares side by side (z = 0) and a unit square above the
   // right one (z = 1) joined to it by four edges: a box beside a square,
