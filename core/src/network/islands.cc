@@ -2,7 +2,8 @@
 // Lone loops into islands: a closed curve drawn alone on a face of the
 // network (a circle on a box's lid, a ring inside a ring) is a boundary of
 // that face's patch. Alone, the rotation system makes it a disk that
-// overlaps the face around it, and one of the two is left out.
+// overlaps the face around it, which the crossing checks can only keep
+// apart from it or leave out.
 #include "network/islands.h"
 
 #include <algorithm>

@@ -574,16 +574,20 @@ Status FindNetworkCycles(const NetworkGraph& graph,
       }
     }
   }
-  // Walls turn where the rotation does not: between darts that are not
-  // neighbours at their junction.
-  std::set<std::pair<int32_t, int32_t>> corners;
-  for (size_t d = 0; d < rot.before.size(); ++d) {
-    if (rot.before[d] < 0) continue;
-    const auto a = static_cast<int32_t>(d);
-    corners.insert({std::min(a, rot.before[d]), std::max(a, rot.before[d])});
+  if (options.walls) {
+    // Walls turn where the rotation does not: between darts that are not
+    // neighbours at their junction.
+    std::set<std::pair<int32_t, int32_t>> corners;
+    for (size_t d = 0; d < rot.before.size(); ++d) {
+      if (rot.before[d] >= 0) {
+        corners.insert(Corner(static_cast<int32_t>(d), rot.before[d]));
+      }
+    }
+    if (!FindWalls(graph, corners, cycles, notes, &ticker)) {
+      return ticker.status();
+    }
   }
-  if ((options.walls && !FindWalls(graph, corners, cycles, notes, &ticker)) ||
-      !PairIslands(graph, options.islands, cycles, notes, &ticker)) {
+  if (!PairIslands(graph, options.islands, cycles, notes, &ticker)) {
     return ticker.status();
   }
   return OkStatus();

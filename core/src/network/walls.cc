@@ -24,10 +24,6 @@ int32_t JunctionOf(const NetworkGraph& g, int32_t dart) {
   return (dart & 1) ? vs.back() : vs.front();
 }
 
-std::pair<int32_t, int32_t> Corner(int32_t a, int32_t b) {
-  return {std::min(a, b), std::max(a, b)};
-}
-
 CurveUse UseOf(int32_t dart) { return {dart / 2, (dart & 1) == 1}; }
 
 struct Search {
@@ -127,6 +123,10 @@ int IsWall(const NetworkGraph& g, const std::vector<int32_t>& darts,
 }
 
 }  // namespace
+
+std::pair<int32_t, int32_t> Corner(int32_t a, int32_t b) {
+  return {std::min(a, b), std::max(a, b)};
+}
 
 bool FindWalls(const NetworkGraph& g,
                const std::set<std::pair<int32_t, int32_t>>& used,

@@ -12,6 +12,10 @@
 
 namespace dot {
 
+// The corner between darts a and b at their junction (dart 2c + end),
+// the smaller first.
+std::pair<int32_t, int32_t> Corner(int32_t a, int32_t b);
+
 // Walls (CycleOptions::walls): patches that make a third (or further)
 // patch on their curves, as a partition inside a box. A rotation system
 // gives every curve two faces, so the faces found leave a wall out; its
