@@ -21,6 +21,7 @@
 #include <unordered_map>
 
 #include "dot/network.h"
+#include "network/face_cost.h"
 #include "network/islands.h"
 #include "network/seam.h"
 #include "network/walls.h"
@@ -154,7 +155,8 @@ void SortAround(const NetworkGraph& g, Junction* j) {
 // Signs of the fitted normals, made to agree along a maximum spanning tree
 // of the junction graph weighted by how well carried normals agree.
 void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
-                   const std::vector<char>& live) {
+                   const std::vector<char>& live,
+                   std::vector<int>* curve_votes) {
   struct Link {
     double weight;
     int32_t from, to;
@@ -210,6 +212,7 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
   // curves, so each curve is carried once. Passes until no junction
   // changes (a few; capped).
   std::map<int32_t, std::vector<std::pair<int32_t, int>>> votes_at;
+  curve_votes->assign(g.curves.size(), 0);
   for (const auto& [v, at] : curves_at) {
     if (!(*js)[v].has_normal) continue;
     for (const auto& [c, end] : at) {
@@ -221,6 +224,7 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
       const int vote = (d > 0) - (d < 0);
       votes_at[v].push_back({path.back(), vote});
       votes_at[path.back()].push_back({v, vote});
+      (*curve_votes)[c] = vote;
     }
   }
   std::map<int32_t, int> sign;  // -1: flipped since the votes were taken
@@ -243,6 +247,12 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
     Junction& j = (*js)[v];
     j.normal = -1.0 * j.normal;
     std::reverse(j.darts.begin(), j.darts.end());
+  }
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    const auto& vs = g.curves[c].vertices;
+    if ((*curve_votes)[c] != 0) {
+      (*curve_votes)[c] *= sign[vs.front()] * sign[vs.back()];
+    }
   }
 }
 
@@ -278,6 +288,19 @@ struct Rotation {
   std::vector<int32_t> before;              // per dart
   std::vector<std::vector<int32_t>> rings;  // per junction, counter-clockwise
   int32_t Next(int32_t leave) const { return before[leave ^ 1]; }
+  void SetRing(int32_t r) {
+    const auto& ring = rings[r];
+    for (size_t k = 0; k < ring.size(); ++k) {
+      before[ring[k]] = ring[(k + ring.size() - 1) % ring.size()];
+    }
+  }
+  std::vector<signed char> sign;  // per ring, when kept: -1 once flipped
+  // The junction's normal the other way round.
+  void Flip(int32_t r) {
+    if (!sign.empty()) sign[r] = static_cast<signed char>(-sign[r]);
+    std::reverse(rings[r].begin(), rings[r].end());
+    SetRing(r);
+  }
 };
 
 // The faces of a rotation system (or those around a junction): how many
@@ -367,29 +390,19 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
                     const std::vector<std::pair<size_t, size_t>>& subtrees,
                     bool (*better)(const FaceCount&, const FaceCount&),
                     RunTicker* ticker) {
-  auto set_ring = [&](int32_t r) {
-    const auto& ring = rot->rings[r];
-    for (size_t k = 0; k < ring.size(); ++k) {
-      rot->before[ring[k]] = ring[(k + ring.size() - 1) % ring.size()];
-    }
-  };
-  auto flip = [&](int32_t r) {
-    std::reverse(rot->rings[r].begin(), rot->rings[r].end());
-    set_ring(r);
-  };
   bool stop = false;
   for (int pass = 0; pass < 8; ++pass) {
     bool improved = false;
     for (size_t r = 0; r < rot->rings.size(); ++r) {
       if (rot->rings[r].size() < 3) continue;
       const auto before = FacesAt(*rot, rot->rings[r], ticker, &stop);
-      flip(static_cast<int32_t>(r));
+      rot->Flip(static_cast<int32_t>(r));
       const auto after = FacesAt(*rot, rot->rings[r], ticker, &stop);
       if (stop) return ticker->status();
       if (better(after, before)) {
         improved = true;
       } else {
-        flip(static_cast<int32_t>(r));
+        rot->Flip(static_cast<int32_t>(r));
       }
       // Where four or more curves meet, their order is a guess too: swap
       // neighbours.
@@ -398,14 +411,14 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
         const size_t l = (k + 1) % ring.size();
         const auto old_score = FacesAt(*rot, ring, ticker, &stop);
         std::swap(ring[k], ring[l]);
-        set_ring(static_cast<int32_t>(r));
+        rot->SetRing(static_cast<int32_t>(r));
         const auto new_score = FacesAt(*rot, ring, ticker, &stop);
         if (stop) return ticker->status();
         if (better(new_score, old_score)) {
           improved = true;
         } else {
           std::swap(ring[k], ring[l]);
-          set_ring(static_cast<int32_t>(r));
+          rot->SetRing(static_cast<int32_t>(r));
         }
       }
     }
@@ -413,19 +426,125 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
       auto score = AllFaces(*rot);
       for (const auto& [first, last] : subtrees) {
         if (!ticker->Poll()) return ticker->status();
-        for (size_t k = first; k < last; ++k) flip(order[k]);
+        for (size_t k = first; k < last; ++k) rot->Flip(order[k]);
         const auto flipped = AllFaces(*rot);
         if (better(flipped, score)) {
           score = flipped;
           improved = true;
         } else {
-          for (size_t k = first; k < last; ++k) flip(order[k]);
+          for (size_t k = first; k < last; ++k) rot->Flip(order[k]);
         }
       }
     }
     if (!improved) break;
   }
   return OkStatus();
+}
+
+// The faces through the darts arriving at `rings`, each once.
+std::vector<std::vector<CurveUse>> FacesThrough(
+    const Rotation& rot, const std::vector<int32_t>& rings) {
+  std::map<int32_t, char> seen;
+  std::vector<std::vector<CurveUse>> faces;
+  std::vector<CurveUse> face;
+  for (int32_t r : rings) {
+    for (int32_t a : rot.rings[r]) {
+      if (seen.count(a ^ 1)) continue;
+      TraceFace(rot, a ^ 1, &seen, &face, nullptr);
+      faces.push_back(face);
+    }
+  }
+  return faces;
+}
+
+// Faces counted as ImproveSigns counts them, and what they cost as patches.
+struct Priced {
+  FaceCount count;
+  double cost = 0;
+};
+Priced Price(const std::vector<std::vector<CurveUse>>& faces,
+             FaceCosts* costs) {
+  Priced p;
+  for (const auto& face : faces) {
+    p.count.Add(face);
+    p.cost += costs->Cost(face);
+  }
+  return p;
+}
+bool Cheaper(const Priced& a, const Priced& b) {
+  if (MoreSimple(a.count, b.count)) return true;
+  if (MoreSimple(b.count, a.count)) return false;
+  return a.cost < b.cost * (1 - 1e-9);
+}
+
+// A curve between two junctions: their rings, and whether the normal
+// carried along it agreed with the other end's (+1), or not (-1), under the
+// signs OrientNormals chose.
+struct CurveRings {
+  int32_t from, to;
+  int vote;
+};
+constexpr int kVotesOverruled = 1;
+
+// Then the faces' DOT cost decides (FaceCosts, after Zhuang et al.): flip a
+// junction, both ends of a curve, or a subtree of the spanning forest when
+// that makes the faces it changes cheaper as patches, never fewer or less
+// simple, and against at most kVotesOverruled of the curves' votes (the
+// votes alone leave up to 9 % of the curves of a coarse network carrying a
+// wrong normal; the cost alone prefers a few wrong faces to true ones).
+Status ImproveByCost(Rotation* rot, const std::vector<CurveRings>& curves,
+                     const std::vector<int32_t>& order,
+                     const std::vector<std::pair<size_t, size_t>>& subtrees,
+                     FaceCosts* costs, RunTicker* ticker) {
+  std::vector<std::vector<int32_t>> curves_at(rot->rings.size());
+  for (size_t c = 0; c < curves.size(); ++c) {
+    curves_at[curves[c].from].push_back(static_cast<int32_t>(c));
+    curves_at[curves[c].to].push_back(static_cast<int32_t>(c));
+  }
+  auto try_flip = [&](const std::vector<int32_t>& move) {
+    // The votes of the curves the move cuts (one end flipped) turn over:
+    // it may overrule at most kVotesOverruled more than it wins.
+    const std::set<int32_t> in(move.begin(), move.end());
+    int lost = 0;
+    for (int32_t r : move) {
+      for (int32_t k : curves_at[r]) {
+        const CurveRings& c = curves[k];
+        if (in.count(c.from) == in.count(c.to)) continue;
+        lost += c.vote * rot->sign[c.from] * rot->sign[c.to];
+      }
+    }
+    if (lost > kVotesOverruled) return false;
+    const Priced before = Price(FacesThrough(*rot, move), costs);
+    for (int32_t r : move) rot->Flip(r);
+    const Priced after = Price(FacesThrough(*rot, move), costs);
+    if (Cheaper(after, before)) return true;
+    for (int32_t r : move) rot->Flip(r);
+    return false;
+  };
+  for (int pass = 0; pass < 4; ++pass) {
+    bool improved = false;
+    for (size_t r = 0; r < rot->rings.size(); ++r) {
+      if (!ticker->Poll()) return ticker->status();
+      if (rot->rings[r].size() < 3) continue;
+      improved |= try_flip({static_cast<int32_t>(r)});
+    }
+    for (const CurveRings& c : curves) {
+      if (!ticker->Poll()) return ticker->status();
+      if (c.from == c.to || rot->rings[c.from].size() < 3 ||
+          rot->rings[c.to].size() < 3) {
+        continue;
+      }
+      improved |= try_flip({c.from, c.to});
+    }
+    for (const auto& [first, last] : subtrees) {
+      if (!ticker->Poll()) return ticker->status();
+      if (last - first < 3) continue;  // done as junctions and curves
+      improved |= try_flip({order.begin() + static_cast<long>(first),
+                            order.begin() + static_cast<long>(last)});
+    }
+    if (!improved) break;
+  }
+  return ticker->status();
 }
 
 }  // namespace
@@ -471,7 +590,8 @@ Status FindNetworkCycles(const NetworkGraph& graph,
       }
     }
   }
-  if (graph.normals.empty()) OrientNormals(graph, &junctions, live);
+  std::vector<int> votes;
+  if (graph.normals.empty()) OrientNormals(graph, &junctions, live, &votes);
   for (auto& [v, j] : junctions) SortAround(graph, &j);
 
   // Dart 2c + end; before[d]: the dart before d counter-clockwise at its
@@ -522,7 +642,17 @@ Status FindNetworkCycles(const NetworkGraph& graph,
         }
       }
     }
+    rot.sign.assign(rot.rings.size(), 1);
     Status s = ImproveSigns(&rot, order, subtrees, MoreSimple, &ticker);
+    if (!s.ok()) return s;
+    std::vector<CurveRings> curves;
+    for (size_t c = 0; c < graph.curves.size(); ++c) {
+      if (!live[c]) continue;
+      const auto& vs = graph.curves[c].vertices;
+      curves.push_back({ring_of[vs.front()], ring_of[vs.back()], votes[c]});
+    }
+    FaceCosts costs(graph, control);
+    s = ImproveByCost(&rot, curves, order, subtrees, &costs, &ticker);
     if (!s.ok()) return s;
     const FaceCount count = AllFaces(rot);
     if (count.simple + count.seams < count.faces) {
