@@ -2,6 +2,8 @@
 #include "network/face_cost.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 
 #include "dot/triangulate.h"
 #include "network/seam.h"
@@ -10,34 +12,68 @@ namespace dot {
 namespace {
 
 // The face as darts (2 curve + reversed), rotated to start at its least
-// dart: the same key whichever dart a trace starts from.
+// dart: the same whichever dart a trace starts from.
 std::vector<int32_t> Canonical(std::vector<int32_t> darts) {
   std::rotate(darts.begin(), std::min_element(darts.begin(), darts.end()),
               darts.end());
   return darts;
 }
 
-std::vector<int32_t> Key(const std::vector<CurveUse>& face) {
-  std::vector<int32_t> forward, backward;
-  for (const CurveUse& u : face) forward.push_back(2 * u.curve + u.reversed);
+std::vector<CurveUse> Reversed(const std::vector<CurveUse>& face) {
+  std::vector<CurveUse> out;
   for (auto it = face.rbegin(); it != face.rend(); ++it) {
-    backward.push_back(2 * it->curve + !it->reversed);
+    out.push_back({it->curve, !it->reversed});
   }
-  return std::min(Canonical(forward), Canonical(backward));
+  return out;
+}
+
+std::vector<int32_t> Darts(const std::vector<CurveUse>& face) {
+  std::vector<int32_t> darts;
+  for (const CurveUse& u : face) darts.push_back(2 * u.curve + u.reversed);
+  return Canonical(std::move(darts));
+}
+
+// A patch's rim passes each junction once: a face that runs a curve twice
+// or comes back to a junction is pinched (the rotation makes such faces
+// where a sign is wrong), and SurfaceNetwork would cut it apart.
+bool Pinched(const NetworkGraph& graph, const std::vector<CurveUse>& face) {
+  if (RunsACurveTwice(face)) return true;
+  std::vector<int32_t> starts;
+  for (const CurveUse& u : face) {
+    const auto& vs = graph.curves[u.curve].vertices;
+    starts.push_back(u.reversed ? vs.back() : vs.front());
+  }
+  std::sort(starts.begin(), starts.end());
+  return std::adjacent_find(starts.begin(), starts.end()) != starts.end();
+}
+
+bool Stopped(const Control& control) {
+  return (control.cancel != nullptr && control.cancel->load()) ||
+         std::chrono::steady_clock::now() >= control.deadline;
 }
 
 }  // namespace
 
 std::vector<Vec3> PricedPoints(const NetworkGraph& graph,
                                const std::vector<CurveUse>& face) {
-  size_t points = 0;
+  std::vector<int32_t> loop;
   for (const CurveUse& u : face) {
-    points += graph.curves[u.curve].vertices.size() - 1;
+    std::vector<int32_t> vs = graph.curves[u.curve].vertices;
+    if (u.reversed) std::reverse(vs.begin(), vs.end());
+    loop.insert(loop.end(), vs.begin(), vs.end() - 1);
   }
-  const double keep =
-      std::min(1.0, static_cast<double>(FaceCosts::kMaxPoints) /
-                        static_cast<double>(std::max<size_t>(points, 1)));
+  const size_t limit = FaceCosts::kMaxPoints;
   std::vector<Vec3> out;
+  if (loop.size() <= limit || face.size() > limit / 2) {
+    const size_t n = std::min(loop.size(), limit);
+    for (size_t k = 0; k < n; ++k) {
+      out.push_back(graph.vertices[loop[k * loop.size() / n]]);
+    }
+    return out;
+  }
+  // Each curve's first point, and its share of the rest.
+  const double keep = static_cast<double>(limit - face.size()) /
+                      static_cast<double>(loop.size() - face.size());
   for (const CurveUse& u : face) {
     std::vector<int32_t> vs = graph.curves[u.curve].vertices;
     if (u.reversed) std::reverse(vs.begin(), vs.end());
@@ -51,19 +87,38 @@ std::vector<Vec3> PricedPoints(const NetworkGraph& graph,
   return out;
 }
 
-double FaceCosts::Cost(const std::vector<CurveUse>& face) {
-  std::vector<int32_t> key = Key(face);
+FaceCosts::FaceCosts(const NetworkGraph& graph, const Control& control,
+                     int64_t max_points)
+    : graph_(graph), max_points_(max_points) {
+  control_.cancel = control.cancel;
+  control_.deadline = control.deadline;
+}
+
+std::optional<double> FaceCosts::Cost(const std::vector<CurveUse>& face) {
+  // Priced the way round whose darts come first, so that a face thinned to
+  // kMaxPoints keeps the same points either way.
+  std::vector<int32_t> forward = Darts(face);
+  const std::vector<CurveUse> back = Reversed(face);
+  std::vector<int32_t> backward = Darts(back);
+  const bool turn = backward < forward;
+  std::vector<int32_t> key = turn ? std::move(backward) : std::move(forward);
   const auto it = cost_.find(key);
   if (it != cost_.end()) return it->second;
+  if (spent() || Stopped(control_)) return std::nullopt;
   Problem problem;
-  problem.vertices = PricedPoints(graph_, face);
+  problem.vertices = PricedPoints(graph_, turn ? back : face);
+  priced_points_ += static_cast<int64_t>(problem.vertices.size());
   double cost = kUnsurfaceable * static_cast<double>(problem.vertices.size());
-  if (!RunsACurveTwice(face) && problem.vertices.size() >= 3) {
+  if (!Pinched(graph_, face) && problem.vertices.size() >= 3) {
     problem.weights[Metric::kSquaredDihedral] = 1;
     Options options;
     options.space = SearchSpace::kDelaunay;
     const Result r = Triangulate(problem, options, control_);
-    if (r.status.ok()) cost = r.total_cost;
+    if (r.status.ok()) {
+      cost = r.total_cost;
+    } else if (Stopped(control_)) {
+      return std::nullopt;  // not a price: the run is over
+    }
   }
   cost_.emplace(std::move(key), cost);
   return cost;

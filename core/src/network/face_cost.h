@@ -8,7 +8,10 @@
 #ifndef DOT_NETWORK_FACE_COST_H_
 #define DOT_NETWORK_FACE_COST_H_
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "dot/control.h"
@@ -16,8 +19,9 @@
 
 namespace dot {
 
-// The points of `face` that price it: each curve's first (the junctions),
-// and between them an even share of at most FaceCosts::kMaxPoints.
+// The points of `face` that price it, at most FaceCosts::kMaxPoints: each
+// curve's first (the junctions) and an even share of the rest; a face of
+// more than kMaxPoints / 2 curves, evenly spaced along the whole loop.
 std::vector<Vec3> PricedPoints(const NetworkGraph& graph,
                                const std::vector<CurveUse>& face);
 
@@ -25,17 +29,18 @@ std::vector<Vec3> PricedPoints(const NetworkGraph& graph,
 class FaceCosts {
  public:
   // Triangulates under `control`'s cancel and deadline only (its progress
-  // is the cycle search's, not each face's).
-  FaceCosts(const NetworkGraph& graph, const Control& control) : graph_(graph) {
-    control_.cancel = control.cancel;
-    control_.deadline = control.deadline;
-  }
-  // The cost of `face` (curves in order, as a rotation system traces
-  // them): the squared-dihedral cost of DOT's triangulation of its
-  // PricedPoints; a face that runs a curve twice, or that DOT cannot
-  // triangulate over its Delaunay triangles, costs kUnsurfaceable per
-  // point.
-  double Cost(const std::vector<CurveUse>& face);
+  // is the cycle search's, not each face's), pricing at most `max_points`
+  // points in all.
+  FaceCosts(const NetworkGraph& graph, const Control& control,
+            int64_t max_points);
+  // The squared-dihedral cost of DOT's triangulation of the face's
+  // PricedPoints (taken the same way round whichever way it runs); a
+  // pinched face (one that runs a curve twice or passes a junction twice:
+  // no patch's rim does), or one DOT cannot triangulate over its Delaunay
+  // triangles, costs kUnsurfaceable per point. Nothing once the caller
+  // stops the run or the points to price are spent.
+  std::optional<double> Cost(const std::vector<CurveUse>& face);
+  bool spent() const { return priced_points_ > max_points_; }
   size_t priced() const { return cost_.size(); }
 
   static constexpr int kMaxPoints = 200;
@@ -44,6 +49,8 @@ class FaceCosts {
  private:
   const NetworkGraph& graph_;
   Control control_;
+  int64_t max_points_;
+  int64_t priced_points_ = 0;
   std::map<std::vector<int32_t>, double> cost_;
 };
 

@@ -23,7 +23,9 @@
 #include "dot/network.h"
 #include "network/face_cost.h"
 #include "network/islands.h"
+#include "network/rotation.h"
 #include "network/seam.h"
+#include "network/sign_cost.h"
 #include "network/walls.h"
 #include "util/run_control.h"
 
@@ -256,296 +258,7 @@ void OrientNormals(const NetworkGraph& g, std::map<int32_t, Junction>* js,
   }
 }
 
-// Splits a face at junctions it passes more than once into simple loops
-// (a position per junction on the stack: linear in the face).
-std::vector<std::vector<CurveUse>> SplitAtRepeats(
-    const NetworkGraph& g, const std::vector<CurveUse>& face) {
-  std::vector<std::vector<CurveUse>> out;
-  std::vector<CurveUse> stack;
-  std::vector<int32_t> starts;  // start junction of each use on the stack
-  std::unordered_map<int32_t, size_t> at;  // junction -> its stack position
-  for (const CurveUse& u : face) {
-    const auto& vs = g.curves[u.curve].vertices;
-    const int32_t from = u.reversed ? vs.back() : vs.front();
-    const int32_t to = u.reversed ? vs.front() : vs.back();
-    at.emplace(from, stack.size());
-    stack.push_back(u);
-    starts.push_back(from);
-    // Close a loop as soon as the walk returns to a junction on the stack.
-    const auto it = at.find(to);
-    if (it == at.end()) continue;
-    const size_t k = it->second;
-    out.emplace_back(stack.begin() + static_cast<long>(k), stack.end());
-    for (size_t j = k; j < starts.size(); ++j) at.erase(starts[j]);
-    stack.resize(k);
-    starts.resize(k);
-  }
-  return out;
-}
-
-// A rotation system over darts 2c + end (see FindNetworkCycles).
-struct Rotation {
-  std::vector<int32_t> before;              // per dart
-  std::vector<std::vector<int32_t>> rings;  // per junction, counter-clockwise
-  int32_t Next(int32_t leave) const { return before[leave ^ 1]; }
-  void SetRing(int32_t r) {
-    const auto& ring = rings[r];
-    for (size_t k = 0; k < ring.size(); ++k) {
-      before[ring[k]] = ring[(k + ring.size() - 1) % ring.size()];
-    }
-  }
-  std::vector<signed char> sign;  // per ring, when kept: -1 once flipped
-  // The junction's normal the other way round.
-  void Flip(int32_t r) {
-    if (!sign.empty()) sign[r] = static_cast<signed char>(-sign[r]);
-    std::reverse(rings[r].begin(), rings[r].end());
-    SetRing(r);
-  }
-};
-
-// The faces of a rotation system (or those around a junction): how many
-// run no curve twice, how many run only a seam one way and back (which
-// SurfaceNetwork surfaces too), and all.
-struct FaceCount {
-  int simple = 0, seams = 0, faces = 0;
-  void Add(const std::vector<CurveUse>& face) {
-    ++faces;
-    if (!RunsACurveTwice(face)) {
-      ++simple;
-    } else if (IsSeamLoop(face)) {
-      ++seams;
-    }
-  }
-};
-
-// First more simple faces, then more faces (a lower genus): a wrong sign
-// merges faces. Counting seams here too would trade true faces for merged
-// ones (measured on a genus-3 network).
-bool MoreSimple(const FaceCount& a, const FaceCount& b) {
-  return std::tie(a.simple, a.faces) > std::tie(b.simple, b.faces);
-}
-// Then, from there, faces made surfaceable, none lost (three rims and two
-// seams: two tubes rather than a disk inside and one face with both).
-bool MoreSurfaceable(const FaceCount& a, const FaceCount& b) {
-  return a.faces >= b.faces && a.simple + a.seams > b.simple + b.seams;
-}
-
-// The face that leaves along dart `start`, each dart marked in `seen`;
-// false when the ticker says stop (polled per dart: faces can be long).
-template <typename Seen>
-bool TraceFace(const Rotation& rot, int32_t start, Seen* seen,
-               std::vector<CurveUse>* face, RunTicker* ticker) {
-  face->clear();
-  int32_t d = start;
-  do {
-    if (ticker != nullptr && !ticker->Tick()) return false;
-    (*seen)[d] = 1;
-    face->push_back({d / 2, (d & 1) == 1});
-    d = rot.Next(d);
-  } while (d != start);
-  return true;
-}
-
-// Faces through the darts arriving at a junction: how many are
-// surfaceable, and their count.
-FaceCount FacesAt(const Rotation& rot, const std::vector<int32_t>& ring,
-                  RunTicker* ticker, bool* stop) {
-  std::map<int32_t, char> seen;
-  FaceCount count;
-  std::vector<CurveUse> face;
-  for (int32_t a : ring) {
-    const int32_t start = a ^ 1;  // leaves the other end, arrives here
-    if (seen.count(start)) continue;
-    if (!TraceFace(rot, start, &seen, &face, ticker)) {
-      *stop = true;
-      return {};
-    }
-    count.Add(face);
-  }
-  return count;
-}
-
-// Faces of the whole rotation system: (surfaceable ones, all).
-FaceCount AllFaces(const Rotation& rot) {
-  std::vector<char> seen(rot.before.size(), 0);
-  FaceCount count;
-  std::vector<CurveUse> face;
-  for (const auto& ring : rot.rings) {
-    for (int32_t start : ring) {
-      if (seen[start]) continue;
-      TraceFace(rot, start, &seen, &face, nullptr);
-      count.Add(face);
-    }
-  }
-  return count;
-}
-
-// The normals' signs are a guess where the network bends: a wrong sign at
-// one junction merges the faces around it (an embedding of higher genus),
-// and a wrong link of the spanning tree flips a whole subtree. So flip
-// single junctions, then subtrees (`order`: ring indices in the spanning
-// forest's preorder; `subtrees`: each non-root junction's range of it),
-// while that makes more faces surfaceable, or more faces (a lower genus).
-Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
-                    const std::vector<std::pair<size_t, size_t>>& subtrees,
-                    bool (*better)(const FaceCount&, const FaceCount&),
-                    RunTicker* ticker) {
-  bool stop = false;
-  for (int pass = 0; pass < 8; ++pass) {
-    bool improved = false;
-    for (size_t r = 0; r < rot->rings.size(); ++r) {
-      if (rot->rings[r].size() < 3) continue;
-      const auto before = FacesAt(*rot, rot->rings[r], ticker, &stop);
-      rot->Flip(static_cast<int32_t>(r));
-      const auto after = FacesAt(*rot, rot->rings[r], ticker, &stop);
-      if (stop) return ticker->status();
-      if (better(after, before)) {
-        improved = true;
-      } else {
-        rot->Flip(static_cast<int32_t>(r));
-      }
-      // Where four or more curves meet, their order is a guess too: swap
-      // neighbours.
-      auto& ring = rot->rings[r];
-      for (size_t k = 0; ring.size() >= 4 && k < ring.size(); ++k) {
-        const size_t l = (k + 1) % ring.size();
-        const auto old_score = FacesAt(*rot, ring, ticker, &stop);
-        std::swap(ring[k], ring[l]);
-        rot->SetRing(static_cast<int32_t>(r));
-        const auto new_score = FacesAt(*rot, ring, ticker, &stop);
-        if (stop) return ticker->status();
-        if (better(new_score, old_score)) {
-          improved = true;
-        } else {
-          std::swap(ring[k], ring[l]);
-          rot->SetRing(static_cast<int32_t>(r));
-        }
-      }
-    }
-    if (!subtrees.empty()) {
-      auto score = AllFaces(*rot);
-      for (const auto& [first, last] : subtrees) {
-        if (!ticker->Poll()) return ticker->status();
-        for (size_t k = first; k < last; ++k) rot->Flip(order[k]);
-        const auto flipped = AllFaces(*rot);
-        if (better(flipped, score)) {
-          score = flipped;
-          improved = true;
-        } else {
-          for (size_t k = first; k < last; ++k) rot->Flip(order[k]);
-        }
-      }
-    }
-    if (!improved) break;
-  }
-  return OkStatus();
-}
-
-// The faces through the darts arriving at `rings`, each once.
-std::vector<std::vector<CurveUse>> FacesThrough(
-    const Rotation& rot, const std::vector<int32_t>& rings) {
-  std::map<int32_t, char> seen;
-  std::vector<std::vector<CurveUse>> faces;
-  std::vector<CurveUse> face;
-  for (int32_t r : rings) {
-    for (int32_t a : rot.rings[r]) {
-      if (seen.count(a ^ 1)) continue;
-      TraceFace(rot, a ^ 1, &seen, &face, nullptr);
-      faces.push_back(face);
-    }
-  }
-  return faces;
-}
-
-// Faces counted as ImproveSigns counts them, and what they cost as patches.
-struct Priced {
-  FaceCount count;
-  double cost = 0;
-};
-Priced Price(const std::vector<std::vector<CurveUse>>& faces,
-             FaceCosts* costs) {
-  Priced p;
-  for (const auto& face : faces) {
-    p.count.Add(face);
-    p.cost += costs->Cost(face);
-  }
-  return p;
-}
-bool Cheaper(const Priced& a, const Priced& b) {
-  if (MoreSimple(a.count, b.count)) return true;
-  if (MoreSimple(b.count, a.count)) return false;
-  return a.cost < b.cost * (1 - 1e-9);
-}
-
-// A curve between two junctions: their rings, and whether the normal
-// carried along it agreed with the other end's (+1), or not (-1), under the
-// signs OrientNormals chose.
-struct CurveRings {
-  int32_t from, to;
-  int vote;
-};
-constexpr int kVotesOverruled = 1;
-
-// Then the faces' DOT cost decides (FaceCosts, after Zhuang et al.): flip a
-// junction, both ends of a curve, or a subtree of the spanning forest when
-// that makes the faces it changes cheaper as patches, never fewer or less
-// simple, and against at most kVotesOverruled of the curves' votes (the
-// votes alone leave up to 9 % of the curves of a coarse network carrying a
-// wrong normal; the cost alone prefers a few wrong faces to true ones).
-Status ImproveByCost(Rotation* rot, const std::vector<CurveRings>& curves,
-                     const std::vector<int32_t>& order,
-                     const std::vector<std::pair<size_t, size_t>>& subtrees,
-                     FaceCosts* costs, RunTicker* ticker) {
-  std::vector<std::vector<int32_t>> curves_at(rot->rings.size());
-  for (size_t c = 0; c < curves.size(); ++c) {
-    curves_at[curves[c].from].push_back(static_cast<int32_t>(c));
-    curves_at[curves[c].to].push_back(static_cast<int32_t>(c));
-  }
-  auto try_flip = [&](const std::vector<int32_t>& move) {
-    // The votes of the curves the move cuts (one end flipped) turn over:
-    // it may overrule at most kVotesOverruled more than it wins.
-    const std::set<int32_t> in(move.begin(), move.end());
-    int lost = 0;
-    for (int32_t r : move) {
-      for (int32_t k : curves_at[r]) {
-        const CurveRings& c = curves[k];
-        if (in.count(c.from) == in.count(c.to)) continue;
-        lost += c.vote * rot->sign[c.from] * rot->sign[c.to];
-      }
-    }
-    if (lost > kVotesOverruled) return false;
-    const Priced before = Price(FacesThrough(*rot, move), costs);
-    for (int32_t r : move) rot->Flip(r);
-    const Priced after = Price(FacesThrough(*rot, move), costs);
-    if (Cheaper(after, before)) return true;
-    for (int32_t r : move) rot->Flip(r);
-    return false;
-  };
-  for (int pass = 0; pass < 4; ++pass) {
-    bool improved = false;
-    for (size_t r = 0; r < rot->rings.size(); ++r) {
-      if (!ticker->Poll()) return ticker->status();
-      if (rot->rings[r].size() < 3) continue;
-      improved |= try_flip({static_cast<int32_t>(r)});
-    }
-    for (const CurveRings& c : curves) {
-      if (!ticker->Poll()) return ticker->status();
-      if (c.from == c.to || rot->rings[c.from].size() < 3 ||
-          rot->rings[c.to].size() < 3) {
-        continue;
-      }
-      improved |= try_flip({c.from, c.to});
-    }
-    for (const auto& [first, last] : subtrees) {
-      if (!ticker->Poll()) return ticker->status();
-      if (last - first < 3) continue;  // done as junctions and curves
-      improved |= try_flip({order.begin() + static_cast<long>(first),
-                            order.begin() + static_cast<long>(last)});
-    }
-    if (!improved) break;
-  }
-  return ticker->status();
-}
+constexpr int64_t kPricedPoints = 250000;
 
 }  // namespace
 
@@ -651,9 +364,19 @@ Status FindNetworkCycles(const NetworkGraph& graph,
       const auto& vs = graph.curves[c].vertices;
       curves.push_back({ring_of[vs.front()], ring_of[vs.back()], votes[c]});
     }
-    FaceCosts costs(graph, control);
-    s = ImproveByCost(&rot, curves, order, subtrees, &costs, &ticker);
+    // Points to price: moves are tried only where curve votes disagree, so
+    // the cut meshes measured price at most 7,000 (12 a network vertex);
+    // the cap bounds a network built to disagree everywhere (about 1,250
+    // faces of kMaxPoints, a few seconds).
+    FaceCosts costs(graph, control, kPricedPoints);
+    s = ImproveByCost(&rot, graph, curves, order, subtrees, &costs, &ticker);
     if (!s.ok()) return s;
+    if (costs.spent() && notes != nullptr) {
+      notes->push_back(
+          "the search by the faces' cost stopped early: its points to "
+          "price were spent (" +
+          std::to_string(costs.priced()) + " faces priced)");
+    }
     const FaceCount count = AllFaces(rot);
     if (count.simple + count.seams < count.faces) {
       s = ImproveSigns(&rot, order, subtrees, MoreSurfaceable, &ticker);

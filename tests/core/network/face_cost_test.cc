@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace dot {
 namespace {
+
+constexpr int64_t kPlenty = 1 << 20;  // points to price
 
 // A square of four curves, each a side with its midpoint; corners 1 and 3
 // lifted by `lift` (a saddle unless 0).
@@ -26,56 +29,123 @@ NetworkGraph Square(double lift) {
 std::vector<CurveUse> Forward() {
   return {{0, false}, {1, false}, {2, false}, {3, false}};
 }
+std::vector<CurveUse> Backward() {
+  return {{3, true}, {2, true}, {1, true}, {0, true}};
+}
+
+// A wavy ring of `n` points cut into curves at every `step`-th point.
+NetworkGraph Ring(int n, int step) {
+  NetworkGraph g;
+  const double pi = std::acos(-1.0);
+  for (int32_t k = 0; k < n; ++k) {
+    const double a = 2 * pi * k / n;
+    g.vertices.push_back({std::cos(a), std::sin(a), 0.1 * std::sin(3 * a)});
+  }
+  for (int32_t k = 0; k < n; k += step) {
+    NetworkCurve c;
+    for (int32_t j = k; j <= std::min(k + step, n); ++j) {
+      c.vertices.push_back(j % n);
+    }
+    g.curves.push_back(c);
+  }
+  return g;
+}
+
+std::vector<CurveUse> AllForward(const NetworkGraph& g) {
+  std::vector<CurveUse> face;
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    face.push_back({static_cast<int32_t>(c), false});
+  }
+  return face;
+}
 
 TEST(FaceCostsTest, FlatFaceCostsNothingAndASaddleCostsItsBending) {
   const NetworkGraph flat = Square(0), saddle = Square(0.5);
-  FaceCosts flat_costs(flat, {}), saddle_costs(saddle, {});
-  EXPECT_NEAR(flat_costs.Cost(Forward()), 0, 1e-12);
-  EXPECT_GT(saddle_costs.Cost(Forward()), 0.1);
+  FaceCosts flat_costs(flat, {}, kPlenty), saddle_costs(saddle, {}, kPlenty);
+  EXPECT_NEAR(flat_costs.Cost(Forward()).value(), 0, 1e-12);
+  EXPECT_GT(saddle_costs.Cost(Forward()).value(), 0.1);
 }
 
 TEST(FaceCostsTest, AFaceIsPricedOnceFromAnyStartEitherWay) {
   const NetworkGraph g = Square(0.5);
-  FaceCosts costs(g, {});
-  const double first = costs.Cost(Forward());
+  FaceCosts costs(g, {}, kPlenty);
+  const double first = costs.Cost(Forward()).value();
   EXPECT_EQ(costs.Cost({{2, false}, {3, false}, {0, false}, {1, false}}),
             first);
-  EXPECT_EQ(costs.Cost({{3, true}, {2, true}, {1, true}, {0, true}}), first);
+  EXPECT_EQ(costs.Cost(Backward()), first);
   EXPECT_EQ(costs.priced(), 1u);
+}
+
+// Thinned to kMaxPoints, a face keeps the same points whichever way it is
+// run: the price does not depend on which way a trace found it first.
+TEST(FaceCostsTest, ALongFaceCostsTheSameEitherWay) {
+  const NetworkGraph g = Ring(3000, 100);
+  std::vector<CurveUse> forward = AllForward(g), backward;
+  for (auto it = forward.rbegin(); it != forward.rend(); ++it) {
+    backward.push_back({it->curve, !it->reversed});
+  }
+  FaceCosts one(g, {}, kPlenty), other(g, {}, kPlenty);
+  EXPECT_EQ(one.Cost(forward), other.Cost(backward));
 }
 
 // A face that runs a curve there and back is no patch: it costs the most a
 // point can.
 TEST(FaceCostsTest, AFaceRunningACurveTwiceIsUnsurfaceable) {
   const NetworkGraph g = Square(0);
-  FaceCosts costs(g, {});
+  FaceCosts costs(g, {}, kPlenty);
   EXPECT_EQ(costs.Cost({{0, false}, {0, true}}), 4 * FaceCosts::kUnsurfaceable);
 }
 
-// A long loop is priced by at most kMaxPoints of its points, every
-// junction among them.
-TEST(FaceCostsTest, LongLoopsArePricedBySomeOfTheirPoints) {
+// A figure eight through one junction twice is pinched: no rim.
+TEST(FaceCostsTest, AFacePassingAJunctionTwiceIsUnsurfaceable) {
   NetworkGraph g;
-  const int n = 5000;
-  for (int32_t k = 0; k < n; ++k) {
-    const double a = 2 * M_PI * k / n;
-    g.vertices.push_back({std::cos(a), std::sin(a), 0.1 * std::sin(3 * a)});
-  }
-  // Two curves: 0 -> 1000 and 1000 -> 0 round the rest.
-  NetworkCurve a, b;
-  for (int32_t k = 0; k <= 1000; ++k) a.vertices.push_back(k);
-  for (int32_t k = 1000; k <= n; ++k) b.vertices.push_back(k % n);
-  g.curves = {a, b};
-  const std::vector<CurveUse> face = {{0, false}, {1, false}};
-  const std::vector<Vec3> points = PricedPoints(g, face);
+  g.vertices = {{0, 0, 0}, {1, 1, 0}, {1, -1, 0}, {-1, 1, 0}, {-1, -1, 0}};
+  g.curves = {{{0, 1, 2, 0}}, {{0, 3, 4, 0}}};  // two loops from vertex 0
+  FaceCosts costs(g, {}, kPlenty);
+  EXPECT_EQ(costs.Cost({{0, false}, {1, false}}),
+            6 * FaceCosts::kUnsurfaceable);
+  EXPECT_NEAR(costs.Cost({{0, false}}).value(), 0, 1e-12);  // one lobe
+}
+
+// A long loop is priced by at most kMaxPoints of its points: every
+// junction among them when its curves are few, evenly spaced along it when
+// they are many.
+TEST(FaceCostsTest, LongLoopsArePricedBySomeOfTheirPoints) {
+  const NetworkGraph few = Ring(5000, 1000);
+  const std::vector<Vec3> points = PricedPoints(few, AllForward(few));
   EXPECT_LE(points.size(), static_cast<size_t>(FaceCosts::kMaxPoints));
-  EXPECT_GE(points.size(), static_cast<size_t>(FaceCosts::kMaxPoints) - 2);
-  EXPECT_EQ(points[0], g.vertices[0]);
-  EXPECT_EQ(std::count(points.begin(), points.end(), g.vertices[1000]), 1);
-  FaceCosts costs(g, {});
-  const double cost = costs.Cost(face);
+  EXPECT_GE(points.size(), static_cast<size_t>(FaceCosts::kMaxPoints) - 5);
+  for (int32_t junction = 0; junction < 5000; junction += 1000) {
+    EXPECT_EQ(std::count(points.begin(), points.end(), few.vertices[junction]),
+              1);
+  }
+  FaceCosts costs(few, {}, kPlenty);
+  const double cost = costs.Cost(AllForward(few)).value();
   EXPECT_GT(cost, 0);
   EXPECT_LT(cost, FaceCosts::kUnsurfaceable);  // DOT triangulated it
+  // 2,500 curves of two edges: still kMaxPoints.
+  const NetworkGraph many = Ring(5000, 2);
+  EXPECT_EQ(PricedPoints(many, AllForward(many)).size(),
+            static_cast<size_t>(FaceCosts::kMaxPoints));
+}
+
+// No price once the points to price are spent, or the caller stopped the
+// run; what was priced stays.
+TEST(FaceCostsTest, NoPriceOnceSpentOrStopped) {
+  const NetworkGraph g = Square(0.5);
+  FaceCosts costs(g, {}, 10);
+  ASSERT_TRUE(costs.Cost(Forward()).has_value());  // 8 points
+  EXPECT_FALSE(costs.spent());
+  EXPECT_FALSE(costs.Cost({{0, false}, {0, true}}).has_value() &&
+               costs.Cost({{1, false}, {1, true}}).has_value());
+  EXPECT_TRUE(costs.spent());
+  EXPECT_TRUE(costs.Cost(Backward()).has_value());  // priced before
+  std::atomic<bool> cancel{true};
+  Control stop;
+  stop.cancel = &cancel;
+  FaceCosts cancelled(g, stop, kPlenty);
+  EXPECT_FALSE(cancelled.Cost(Forward()).has_value());
+  EXPECT_EQ(cancelled.priced(), 0u);
 }
 
 }  // namespace
