@@ -99,11 +99,14 @@ Status TriangulatePatch(
   Options o = options.triangulate;
   o.protect_edges = false;   // a vertex on a curve would split it for one side
   o.reorient_loops = false;  // loops run as the embedding orients them
-  if (o.space == SearchSpace::kAuto) o.space = SearchSpace::kDelaunay;
+  // kAuto: the Delaunay triangles, then (a loop of at most
+  // all_space_max_vertices) the optimum over every triangle if it is
+  // intersection-free; then, below, every triangle with the Delaunay ones
+  // first.
   Result r = Triangulate(problem, o, control);
   std::string reasons;
   if (r.status.code == StatusCode::kNoTriangulation && loops.size() == 1 &&
-      o.space == SearchSpace::kDelaunay &&
+      (o.space == SearchSpace::kDelaunay || o.space == SearchSpace::kAuto) &&
       static_cast<int>(ids.size()) <= o.delaunay_first_max_vertices) {
     reasons = "Delaunay: " + r.status.message + "; ";
     o.space = SearchSpace::kDelaunayFirst;
@@ -114,6 +117,27 @@ Status TriangulatePatch(
           MakeStatus(StatusCode::kNoTriangulation,
                      "its surface over every triangle crosses itself (" +
                          std::to_string(r.intersecting_pairs) + " pairs)");
+    }
+    // A short loop whose optimum over every triangle crosses itself under
+    // these weights may still have one that does not under bending alone
+    // (the weights shape only the coarse surface that refinement and
+    // fairing then reshape): the optimum of squared dihedral angles over
+    // every triangle, taken if it is intersection-free.
+    if (!r.status.ok() &&
+        static_cast<int>(ids.size()) <= o.all_space_max_vertices) {
+      Problem bending = problem;
+      bending.weights = {};
+      bending.weights[Metric::kSquaredDihedral] = 1;
+      bending.normals.clear();
+      o.space = SearchSpace::kAll;
+      Result b = Triangulate(bending, o, control);
+      if (b.status.ok() && b.intersecting_pairs == 0) {
+        r = std::move(b);
+      } else {
+        reasons += r.status.message + "; ";
+        r.status =
+            MakeStatus(StatusCode::kNoTriangulation, "by bending alone too");
+      }
     }
   }
   report->triangulate_ms = MsSince(t0);

@@ -142,6 +142,21 @@ TEST(SurfaceNetworkTest, CutMeshNetworksComeBackNearTheOriginal) {
   }
 }
 
+// Homer in 140 patches, every third rim vertex: a 17-point rim whose
+// optimum over every triangle crosses itself under the network's weights
+// (bending, normals, area), and so does its fan; over every triangle by
+// bending alone it does not, and the surface closes (139 of 140 before).
+TEST(SurfaceNetworkTest, ShortRimFallsBackToBendingOverEveryTriangle) {
+  MeshData mesh;
+  ASSERT_TRUE(
+      ReadMeshFile(std::string(DOT_MESH_DIR) + "/homer.off", &mesh).ok());
+  CutNetwork cut;
+  ASSERT_TRUE(CutIntoPatches(mesh, 140, 3, 1, &cut).ok());
+  const SurfaceResult r = SurfaceNetwork(cut.network);
+  ExpectClosedAndValid(cut.network, r);
+  EXPECT_EQ(r.report.surfaced, 140);
+}
+
 // Two boxes sharing a wall: the wall's four curves border three patches
 // each. Cycles given by the user (the faces' corners).
 TEST(SurfaceNetworkTest, NonManifoldNetworkFoundOrGiven) {
