@@ -154,17 +154,19 @@ struct CycleOptions {
 
 // The cycles of a rotation system: at each junction the curves are ordered
 // around a normal (given, or fitted to the curves' directions, signs made
-// to agree across the network), and each face of that embedding is a
-// cycle, so every curve that is not dangling bounds two patches, one on
-// each side, the cycles consistently oriented. A closed curve alone (no
-// junction) bounds one patch. Manifold networks of any genus; where three
-// patches meet on one curve, walls (CycleOptions) or CyclesFromVertices. A
-// face
-// that runs a path of curves one way and then back (a tube's seam, a curve
-// from a hole to its rim) is a cycle too: SurfaceNetwork cuts it in two
-// pieces by a new path whose points are new, faired vertices. Then walls
-// and islands as `options` say. `notes` receives the faces left out (others
-// that run a curve twice), the walls and the islands paired.
+// to agree across the network by the normals carried along the curves,
+// then by the faces: more simple faces and more faces, and where that
+// leaves a choice, faces that cost less as DOT patches), and each face of
+// that embedding is a cycle, so every curve that is not dangling bounds two
+// patches, one on each side, the cycles consistently oriented. A closed
+// curve alone (no junction) bounds one patch. Manifold networks of any
+// genus; where three patches meet on one curve, walls (CycleOptions) or
+// CyclesFromVertices. A face that runs a path of curves one way and then
+// back (a tube's seam, a curve from a hole to its rim) is a cycle too:
+// SurfaceNetwork cuts it in two pieces by a new path whose points are new,
+// faired vertices. Then walls and islands as `options` say. `notes`
+// receives the faces left out (others that run a curve twice), the walls,
+// the islands paired, and a search by cost cut short.
 Status FindNetworkCycles(const NetworkGraph& graph,
                          std::vector<NetworkCycle>* cycles,
                          std::vector<std::string>* notes = nullptr,

@@ -105,8 +105,15 @@ std::optional<double> FaceCosts::Cost(const std::vector<CurveUse>& face) {
   const auto it = cost_.find(key);
   if (it != cost_.end()) return it->second;
   if (spent() || Stopped(control_)) return std::nullopt;
+  // From its least dart too: a face thinned evenly along its loop keeps
+  // the same points whichever dart a trace started from.
+  std::vector<CurveUse> priced = turn ? back : face;
+  const auto least = std::find_if(
+      priced.begin(), priced.end(),
+      [&](const CurveUse& u) { return 2 * u.curve + u.reversed == key[0]; });
+  std::rotate(priced.begin(), least, priced.end());
   Problem problem;
-  problem.vertices = PricedPoints(graph_, turn ? back : face);
+  problem.vertices = PricedPoints(graph_, priced);
   priced_points_ += static_cast<int64_t>(problem.vertices.size());
   double cost = kUnsurfaceable * static_cast<double>(problem.vertices.size());
   if (!Pinched(graph_, face) && problem.vertices.size() >= 3) {
@@ -116,8 +123,9 @@ std::optional<double> FaceCosts::Cost(const std::vector<CurveUse>& face) {
     const Result r = Triangulate(problem, options, control_);
     if (r.status.ok()) {
       cost = r.total_cost;
-    } else if (Stopped(control_)) {
-      return std::nullopt;  // not a price: the run is over
+    } else if (r.status.code != StatusCode::kNoTriangulation &&
+               r.status.code != StatusCode::kInvalidArgument) {
+      return std::nullopt;  // stopped or out of memory: not a price
     }
   }
   cost_.emplace(std::move(key), cost);

@@ -5,9 +5,10 @@
 // plane that best fits their directions), the normals' signs are made to
 // agree along a maximum spanning tree of the junctions (a normal carried
 // along a curve, kept perpendicular to it, must meet the next one's), then
-// with most of each junction's curves, and the faces of the embedding are
-// traced: leaving each junction by the next curve clockwise from the one
-// arrived by keeps the face on the left. Every
+// with most of each junction's curves, then with the faces (rotation.h:
+// more and simpler faces; sign_cost.h: cheaper faces as DOT patches), and
+// the faces of the embedding are traced: leaving each junction by the next
+// curve clockwise from the one arrived by keeps the face on the left. Every
 // curve then bounds two faces, run in opposite directions, so the patches
 // are consistently oriented and a closed network gives a closed surface,
 // whatever its genus (Euler's formula holds by construction).

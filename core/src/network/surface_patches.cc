@@ -99,45 +99,68 @@ Status TriangulatePatch(
   Options o = options.triangulate;
   o.protect_edges = false;   // a vertex on a curve would split it for one side
   o.reorient_loops = false;  // loops run as the embedding orients them
-  // kAuto: the Delaunay triangles, then (a loop of at most
-  // all_space_max_vertices) the optimum over every triangle if it is
+  // One loop, by default (kAuto): the Delaunay triangles, then (at most
+  // all_space_max_vertices points) the optimum over every triangle if it is
   // intersection-free; then, below, every triangle with the Delaunay ones
-  // first.
+  // first, and the optimum of bending alone. Several loops: the Delaunay
+  // triangles (the multi-loop solver's own fallbacks).
+  if (o.space == SearchSpace::kAuto && loops.size() > 1) {
+    o.space = SearchSpace::kDelaunay;
+  }
   Result r = Triangulate(problem, o, control);
   std::string reasons;
-  if (r.status.code == StatusCode::kNoTriangulation && loops.size() == 1 &&
-      (o.space == SearchSpace::kDelaunay || o.space == SearchSpace::kAuto) &&
-      static_cast<int>(ids.size()) <= o.delaunay_first_max_vertices) {
-    reasons = "Delaunay: " + r.status.message + "; ";
+  const bool bent = r.status.code == StatusCode::kNoTriangulation &&
+                    loops.size() == 1 && o.space != SearchSpace::kAll &&
+                    o.space != SearchSpace::kDelaunayFirst;
+  if (bent && static_cast<int>(ids.size()) <= o.delaunay_first_max_vertices) {
+    reasons = (o.space == SearchSpace::kAuto &&
+                       static_cast<int>(ids.size()) <= o.all_space_max_vertices
+                   ? "over the Delaunay triangles, then every triangle: "
+                   : "over the Delaunay triangles: ") +
+              r.status.message + "; ";
     o.space = SearchSpace::kDelaunayFirst;
     o.validate_output = true;
     r = Triangulate(problem, o, control);
     if (r.status.ok() && r.intersecting_pairs > 0) {
       r.status =
           MakeStatus(StatusCode::kNoTriangulation,
-                     "its surface over every triangle crosses itself (" +
+                     "with the Delaunay ones first it crosses itself (" +
                          std::to_string(r.intersecting_pairs) + " pairs)");
     }
-    // A short loop whose optimum over every triangle crosses itself under
-    // these weights may still have one that does not under bending alone
-    // (the weights shape only the coarse surface that refinement and
-    // fairing then reshape): the optimum of squared dihedral angles over
-    // every triangle, taken if it is intersection-free.
-    if (!r.status.ok() &&
-        static_cast<int>(ids.size()) <= o.all_space_max_vertices) {
-      Problem bending = problem;
-      bending.weights = {};
-      bending.weights[Metric::kSquaredDihedral] = 1;
-      bending.normals.clear();
-      o.space = SearchSpace::kAll;
-      Result b = Triangulate(bending, o, control);
-      if (b.status.ok() && b.intersecting_pairs == 0) {
-        r = std::move(b);
-      } else {
-        reasons += r.status.message + "; ";
-        r.status =
-            MakeStatus(StatusCode::kNoTriangulation, "by bending alone too");
+  }
+  // A short loop whose surfaces under these weights cross themselves may
+  // still have one that does not under bending alone (the weights shape
+  // only the coarse surface, which refinement and fairing reshape): the
+  // optimum of squared dihedral angles over every triangle, taken if it is
+  // intersection-free.
+  if (bent && r.status.code == StatusCode::kNoTriangulation &&
+      static_cast<int>(ids.size()) <= o.all_space_max_vertices) {
+    Problem bending = problem;
+    bending.weights = {};
+    bending.weights[Metric::kSquaredDihedral] = 1;
+    bending.normals.clear();
+    o.space = SearchSpace::kAll;
+    o.validate_output = true;
+    Result b = Triangulate(bending, o, control);
+    if (b.status.ok() && b.intersecting_pairs == 0) {
+      r = std::move(b);
+      const std::string why =
+          "the optimum of bending alone over every triangle (the weights' "
+          "surfaces cross themselves)";
+      if (report->reason.find(why) == std::string::npos) {
+        report->reason += (report->reason.empty() ? "" : "; ") + why;
       }
+    } else if (b.status.ok() || b.status.code == StatusCode::kNoTriangulation) {
+      reasons += r.status.message + "; ";
+      r.status = MakeStatus(
+          StatusCode::kNoTriangulation,
+          "by bending alone over every triangle " +
+              (b.status.ok()
+                   ? "it crosses itself (" +
+                         std::to_string(b.intersecting_pairs) + " pairs)"
+                   : "none either"));
+    } else {
+      r.status = b.status;  // stopped, or out of memory: as it is
     }
   }
   report->triangulate_ms = MsSince(t0);
