@@ -18,7 +18,6 @@
 #include <map>
 #include <queue>
 #include <set>
-#include <tuple>
 #include <unordered_map>
 
 #include "dot/network.h"

@@ -84,22 +84,17 @@ bool TraceFace(const Rotation& rot, int32_t start, Seen* seen,
   return true;
 }
 
-// Faces through the darts arriving at a junction: how many are
-// surfaceable, and their count.
-FaceCount FacesAt(const Rotation& rot, const std::vector<int32_t>& ring,
-                  RunTicker* ticker, bool* stop) {
-  std::map<int32_t, char> seen;
+// The faces through ring r's junction, counted; *stop when the ticker
+// says so.
+FaceCount FacesAt(const Rotation& rot, int32_t r, RunTicker* ticker,
+                  bool* stop) {
+  std::vector<std::vector<CurveUse>> faces;
   FaceCount count;
-  std::vector<CurveUse> face;
-  for (int32_t a : ring) {
-    const int32_t start = a ^ 1;  // leaves the other end, arrives here
-    if (seen.count(start)) continue;
-    if (!TraceFace(rot, start, &seen, &face, ticker)) {
-      *stop = true;
-      return {};
-    }
-    count.Add(face);
+  if (!FacesThrough(rot, {r}, &faces, ticker)) {
+    *stop = true;
+    return count;
   }
+  for (const auto& face : faces) count.Add(face);
   return count;
 }
 
@@ -144,9 +139,9 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
     bool improved = false;
     for (size_t r = 0; r < rot->rings.size(); ++r) {
       if (rot->rings[r].size() < 3) continue;
-      const auto before = FacesAt(*rot, rot->rings[r], ticker, &stop);
+      const auto before = FacesAt(*rot, static_cast<int32_t>(r), ticker, &stop);
       rot->Flip(static_cast<int32_t>(r));
-      const auto after = FacesAt(*rot, rot->rings[r], ticker, &stop);
+      const auto after = FacesAt(*rot, static_cast<int32_t>(r), ticker, &stop);
       if (stop) return ticker->status();
       if (better(after, before)) {
         improved = true;
@@ -158,10 +153,12 @@ Status ImproveSigns(Rotation* rot, const std::vector<int32_t>& order,
       auto& ring = rot->rings[r];
       for (size_t k = 0; ring.size() >= 4 && k < ring.size(); ++k) {
         const size_t l = (k + 1) % ring.size();
-        const auto old_score = FacesAt(*rot, ring, ticker, &stop);
+        const auto old_score =
+            FacesAt(*rot, static_cast<int32_t>(r), ticker, &stop);
         std::swap(ring[k], ring[l]);
         rot->SetRing(static_cast<int32_t>(r));
-        const auto new_score = FacesAt(*rot, ring, ticker, &stop);
+        const auto new_score =
+            FacesAt(*rot, static_cast<int32_t>(r), ticker, &stop);
         if (stop) return ticker->status();
         if (better(new_score, old_score)) {
           improved = true;
