@@ -14,6 +14,7 @@
 #include <map>
 #include <mutex>
 #include <new>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -323,18 +324,35 @@ Status FindConflicts(const NetworkGraph& g, const std::vector<Work>& work,
   return OkStatus();
 }
 
-// Patches of faces in intersecting pairs of `m` (owner per face).
+// Patches of faces in intersecting pairs of `m` (owner per face). With
+// `moved`, only pairs with a face of those patches count (the rest were
+// checked before and have not changed).
 Status CrossingPatches(const MeshData& m, const std::vector<int32_t>& owner,
                        const Control& control, std::set<int32_t>* patches,
-                       int64_t* count) {
+                       int64_t* count,
+                       const std::set<int32_t>* moved = nullptr) {
+  // The moved patches' faces first: the check takes pairs with one of them.
+  std::vector<int32_t> order(m.triangles.size());
+  std::iota(order.begin(), order.end(), 0);
+  size_t checked = SIZE_MAX;
+  std::vector<Triangle> faces;
+  if (moved != nullptr) {
+    const auto mid = std::stable_partition(
+        order.begin(), order.end(),
+        [&](int32_t f) { return moved->count(owner[f]) > 0; });
+    checked = static_cast<size_t>(mid - order.begin());
+    faces.reserve(order.size());
+    for (int32_t f : order) faces.push_back(m.triangles[f]);
+  }
   std::vector<std::pair<int32_t, int32_t>> pairs;
   const Status s =
-      ListIntersectingPairs(m.vertices, m.triangles, SIZE_MAX, control, &pairs);
+      ListIntersectingPairs(m.vertices, moved != nullptr ? faces : m.triangles,
+                            checked, control, &pairs);
   if (!s.ok()) return s;
   patches->clear();
   for (const auto& [a, b] : pairs) {
-    patches->insert(owner[a]);
-    patches->insert(owner[b]);
+    patches->insert(owner[order[a]]);
+    patches->insert(owner[order[b]]);
   }
   *count = static_cast<int64_t>(pairs.size());
   return OkStatus();
@@ -391,13 +409,17 @@ struct RescueTry {
 };
 
 // Tries a failed patch `p` again in the finished surface: each of `tries`
-// (triangulations of its cycle) refined, faired with every other vertex
-// fixed, kept (*rescued) if it crosses nothing and shares no chord.
+// (triangulations of its cycle) refined and faired with every other vertex
+// fixed. Where it crosses neighbours, it is faired again together with them
+// (they were faired around a hole where `p` is), at most `kRescueGrowth`
+// times. Kept (*rescued) if it then crosses nothing and shares no chord;
+// the neighbours faired with it keep their new places.
 Status RescuePatch(const NetworkGraph& g, const SurfaceOptions& options,
                    const Control& control, const std::set<Chord>& curve_edges,
                    int p, const std::vector<RescueTry>& tries, size_t cap,
-                   std::vector<Work>* work, PatchReport* report,
+                   std::vector<Work>* work, std::vector<PatchReport>* reports,
                    bool* rescued) {
+  constexpr int kRescueGrowth = 2;
   const auto first_new = static_cast<int32_t>(g.vertices.size());
   Work& w = (*work)[p];
   *rescued = false;
@@ -406,37 +428,59 @@ Status RescuePatch(const NetworkGraph& g, const SurfaceOptions& options,
     w.mesh = t.mesh;
     w.live = true;
     PatchReport r = t.report;
-    r.reason = report->reason;
+    r.reason = (*reports)[p].reason;
     r.refined_vertices = 0;
     Status s = RefinePatch(g, options, control, first_new, cap, &w.mesh, &r);
     if (!s.ok()) return s;
-    std::vector<int32_t> owner, first;
-    MeshData m = Assemble(g, *work, true, &owner, &first);
-    const auto own = static_cast<int32_t>(w.mesh.new_vertices.size());
-    std::vector<char> fixed(m.vertices.size(), 1);
-    std::fill(fixed.begin() + first[p], fixed.begin() + first[p] + own, 0);
-    bool faired = false;
-    std::string why;
-    s = FairMesh(&m, first_new, fixed, options.fairing_continuity, control,
-                 &faired, &why);
-    if (!s.ok()) return s;
-    std::set<int32_t> crossing;
-    int64_t pairs = 0;
-    s = CrossingPatches(m, owner, control, &crossing, &pairs);
-    if (!s.ok()) return s;
-    if (pairs == 0 && SharedEdgePatches(m, owner, *work, curve_edges).empty()) {
-      std::copy(m.vertices.begin() + first[p],
-                m.vertices.begin() + first[p] + own,
-                w.mesh.new_vertices.begin());
-      r.status = PatchStatus::kSurfaced;
-      r.faired = faired && own > 0;
-      Note(&r, std::string("surfaced after the fairing, ") +
-                   (faired ? "faired" : "refined") +
-                   " alone in the finished surface (its coarse " +
-                   (r.fan ? "fan" : "DOT surface") + " met a neighbour)");
-      *report = std::move(r);
-      *rescued = true;
-      return OkStatus();
+    std::set<int32_t> freed = {p};
+    for (int growth = 0; growth <= kRescueGrowth; ++growth) {
+      std::vector<int32_t> owner, first;
+      MeshData m = Assemble(g, *work, true, &owner, &first);
+      auto own = [&](int32_t q) {
+        return static_cast<std::ptrdiff_t>((*work)[q].mesh.new_vertices.size());
+      };
+      std::vector<char> fixed(m.vertices.size(), 1);
+      for (int32_t q : freed) {
+        std::fill_n(fixed.begin() + first[q], own(q), 0);
+      }
+      bool faired = false;
+      std::string why;
+      s = FairMesh(&m, first_new, fixed, options.fairing_continuity, control,
+                   &faired, &why);
+      if (!s.ok()) return s;
+      std::set<int32_t> crossing;
+      int64_t pairs = 0;
+      s = CrossingPatches(m, owner, control, &crossing, &pairs, &freed);
+      if (!s.ok()) return s;
+      if (pairs == 0 &&
+          SharedEdgePatches(m, owner, *work, curve_edges).empty()) {
+        for (int32_t q : freed) {
+          std::copy_n(m.vertices.begin() + first[q], own(q),
+                      (*work)[q].mesh.new_vertices.begin());
+          if (q == p || !faired) continue;
+          PatchReport& neighbour = (*reports)[q];
+          neighbour.faired = own(q) > 0;
+          Note(&neighbour, "faired again with patch " + std::to_string(p) +
+                               " once that was surfaced");
+        }
+        r.status = PatchStatus::kSurfaced;
+        r.faired = faired && own(p) > 0;
+        Note(&r, std::string("surfaced after the fairing, ") +
+                     (faired ? "faired" : "refined") +
+                     (freed.size() > 1 ? " with its neighbours" : " alone") +
+                     " in the finished surface (its coarse " +
+                     (r.fan ? "fan" : "DOT surface") + " met a neighbour)");
+        (*reports)[p] = std::move(r);
+        *rescued = true;
+        return OkStatus();
+      }
+      // The live neighbours it crosses are freed too, and it is faired
+      // again; not if nothing new was freed or the fairing failed.
+      const size_t before = freed.size();
+      for (int32_t q : crossing) {
+        if ((*work)[q].live) freed.insert(q);
+      }
+      if (!faired || freed.size() == before) break;
     }
   }
   w.live = false;
@@ -946,7 +990,7 @@ SurfaceResult Surface(const CurveNetwork& network,
           /*floor=*/0);
       bool rescued = false;
       s = RescuePatch(g, options, control, curve_edges, p, tries, cap, &work,
-                      &report.patches[p], &rescued);
+                      &report.patches, &rescued);
       if (!s.ok()) return fail(s);
       if (rescued) live.push_back(p);
     }
