@@ -133,6 +133,7 @@ Status TriangulatePatch(
   // only the coarse surface, which refinement and fairing reshape): the
   // optimum of squared dihedral angles over every triangle, taken if it is
   // intersection-free.
+  bool bent_alone = false;
   if (bent && r.status.code == StatusCode::kNoTriangulation &&
       static_cast<int>(ids.size()) <= o.all_space_max_vertices) {
     Problem bending = problem;
@@ -144,12 +145,7 @@ Status TriangulatePatch(
     Result b = Triangulate(bending, o, control);
     if (b.status.ok() && b.intersecting_pairs == 0) {
       r = std::move(b);
-      const std::string why =
-          "the optimum of bending alone over every triangle (the weights' "
-          "surfaces cross themselves)";
-      if (report->reason.find(why) == std::string::npos) {
-        report->reason += (report->reason.empty() ? "" : "; ") + why;
-      }
+      bent_alone = true;
     } else if (b.status.ok() || b.status.code == StatusCode::kNoTriangulation) {
       reasons += r.status.message + "; ";
       r.status = MakeStatus(
@@ -169,6 +165,19 @@ Status TriangulatePatch(
       r.status.message = reasons + r.status.message;
     }
     return r.status;
+  }
+  // The note says how this solve went (a re-solve may not need bending
+  // alone where the first did, or may where it did not).
+  const std::string note = kBendingAloneNote;
+  const size_t at = report->reason.find(note);
+  if (!bent_alone && at != std::string::npos) {
+    const size_t from = at >= 2 ? at - 2 : at;  // with its "; " before
+    report->reason.erase(from, at - from + note.size());
+    if (from == 0 && report->reason.rfind("; ", 0) == 0) {
+      report->reason.erase(0, 2);
+    }
+  } else if (bent_alone && at == std::string::npos) {
+    report->reason += (report->reason.empty() ? "" : "; ") + note;
   }
   report->space = r.space_used;
   report->solver = r.solver;

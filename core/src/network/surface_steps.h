@@ -25,9 +25,14 @@ struct PatchMesh {
 // DOT over the cycle's loops (ids into `vertices`, patch orientation), with
 // `normals` (per vertex, empty: none) as boundary normals and
 // `forbidden` chords (graph vertex pairs) never used: Delaunay first, then
-// every triangle with the Delaunay ones first for one loop. Fills the
-// report's space, solver, cost and triangulate_ms; kNoTriangulation says
-// why no step found one.
+// every triangle with the Delaunay ones first for one loop, then (a short
+// loop) bending alone over every triangle, which adds kBendingAloneNote to
+// the report's reason (and a solve without it takes the note out). Fills
+// the report's space, solver, cost and triangulate_ms; kNoTriangulation
+// says why no step found one.
+inline constexpr char kBendingAloneNote[] =
+    "the optimum of bending alone over every triangle (the weights' "
+    "surfaces cross themselves)";
 Status TriangulatePatch(
     const std::vector<Vec3>& vertices,
     const std::vector<std::vector<int32_t>>& loops,

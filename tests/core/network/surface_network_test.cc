@@ -13,6 +13,7 @@
 #include "dot/network.h"
 #include "dot/network_samples.h"
 #include "dot/validate.h"
+#include "network/surface_steps.h"
 
 namespace dot {
 namespace {
@@ -155,6 +156,11 @@ TEST(SurfaceNetworkTest, ShortRimFallsBackToBendingOverEveryTriangle) {
   const SurfaceResult r = SurfaceNetwork(cut.network);
   ExpectClosedAndValid(cut.network, r);
   EXPECT_EQ(r.report.surfaced, 140);
+  int bent = 0;
+  for (const PatchReport& p : r.report.patches) {
+    bent += p.reason.find(kBendingAloneNote) != std::string::npos;
+  }
+  EXPECT_EQ(bent, 1);
 }
 
 // Bunny in 22 patches, every rim vertex: a 203-point rim whose DOT surface
