@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "dot/dot.h"
+#include "fixtures/cut_mesh.h"
 #include "fixtures/service_fixture.h"
 #include "remote/grpc_calls.h"
 #include "wire/surface_wire.h"
@@ -20,12 +21,7 @@ using testing::StartServer;
 
 // The rims of 150 patches cut from a mesh: ~400 curves.
 CurveNetwork CutNetworkOf(const std::string& mesh_name, int patches) {
-  MeshData mesh;
-  EXPECT_TRUE(
-      ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + mesh_name, &mesh).ok());
-  CutNetwork cut;
-  EXPECT_TRUE(CutIntoPatches(mesh, patches, 1, 1, &cut).ok());
-  return cut.network;
+  return testing::CutMesh(mesh_name, patches, 1, 1).network;
 }
 
 TEST(SurfaceNetworkServiceTest, StreamsInAndComesBackAsComputedLocally) {

@@ -13,6 +13,7 @@
 #include "dot/io.h"
 #include "dot/network.h"
 #include "dot/network_samples.h"
+#include "fixtures/cut_mesh.h"
 
 namespace dot {
 namespace {
@@ -74,11 +75,7 @@ struct RimsFound {
 RimsFound FindCutRims(const std::string& mesh_name, int patches, uint64_t seed,
                       int keep_every = 1) {
   RimsFound out;
-  MeshData mesh;
-  EXPECT_TRUE(
-      ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + mesh_name, &mesh).ok());
-  CutNetwork cut;
-  EXPECT_TRUE(CutIntoPatches(mesh, patches, keep_every, seed, &cut).ok());
+  const CutNetwork cut = testing::CutMesh(mesh_name, patches, keep_every, seed);
   // Graph ids are the network's: a cut uses every vertex it lists, once.
   NetworkGraph g;
   EXPECT_TRUE(BuildNetworkGraph(cut.network, &g).ok());
@@ -100,11 +97,7 @@ RimsFound FindCutRims(const std::string& mesh_name, int patches, uint64_t seed,
 
 // The cut knows its answer: a rim per patch, every curve on two of them.
 TEST(NetworkCyclesTest, CutRimsAreThePatchBoundaries) {
-  MeshData mesh;
-  ASSERT_TRUE(
-      ReadMeshFile(std::string(DOT_MESH_DIR) + "/homer.off", &mesh).ok());
-  CutNetwork cut;
-  ASSERT_TRUE(CutIntoPatches(mesh, 25, 3, 1, &cut).ok());
+  const CutNetwork cut = testing::CutMesh("homer.off", 25, 3, 1);
   ASSERT_EQ(cut.rims.size(), static_cast<size_t>(cut.patches));
   for (const auto& line : cut.network.polylines) {
     int on = 0;

@@ -13,6 +13,7 @@
 #include "dot/network.h"
 #include "dot/network_samples.h"
 #include "dot/validate.h"
+#include "fixtures/cut_mesh.h"
 #include "network/surface_steps.h"
 
 namespace dot {
@@ -125,10 +126,9 @@ TEST(SurfaceNetworkTest, CutMeshNetworksComeBackNearTheOriginal) {
     SCOPED_TRACE(std::string(k.mesh) + " keep every " +
                  std::to_string(k.keep_every));
     MeshData mesh;
-    ASSERT_TRUE(
-        ReadMeshFile(std::string(DOT_MESH_DIR) + "/" + k.mesh, &mesh).ok());
-    CutNetwork cut;
-    ASSERT_TRUE(CutIntoPatches(mesh, k.patches, k.keep_every, 2, &cut).ok());
+    const CutNetwork cut =
+        testing::CutMesh(k.mesh, k.patches, k.keep_every, 2, &mesh);
+    ASSERT_FALSE(cut.network.polylines.empty());
     const SurfaceResult r = SurfaceNetwork(cut.network);
     ExpectClosedAndValid(cut.network, r);
     EXPECT_EQ(ShapeOf(r.mesh).euler, ShapeOf(mesh).euler);
@@ -148,11 +148,8 @@ TEST(SurfaceNetworkTest, CutMeshNetworksComeBackNearTheOriginal) {
 // (bending, normals, area), and so does its fan; over every triangle by
 // bending alone it does not, and the surface closes (139 of 140 before).
 TEST(SurfaceNetworkTest, ShortRimFallsBackToBendingOverEveryTriangle) {
-  MeshData mesh;
-  ASSERT_TRUE(
-      ReadMeshFile(std::string(DOT_MESH_DIR) + "/homer.off", &mesh).ok());
-  CutNetwork cut;
-  ASSERT_TRUE(CutIntoPatches(mesh, 140, 3, 1, &cut).ok());
+  const CutNetwork cut = testing::CutMesh("homer.off", 140, 3, 1);
+  ASSERT_FALSE(cut.network.polylines.empty());
   const SurfaceResult r = SurfaceNetwork(cut.network);
   ExpectClosedAndValid(cut.network, r);
   EXPECT_EQ(r.report.surfaced, 140);
@@ -169,11 +166,7 @@ TEST(SurfaceNetworkTest, ShortRimFallsBackToBendingOverEveryTriangle) {
 // Faired again together with them, nothing crosses and the surface closes
 // (21 of 22 before).
 TEST(SurfaceNetworkTest, CoarsePatchIsRescuedWithItsNeighbours) {
-  MeshData mesh;
-  ASSERT_TRUE(
-      ReadMeshFile(std::string(DOT_MESH_DIR) + "/bunny00.off", &mesh).ok());
-  CutNetwork cut;
-  ASSERT_TRUE(CutIntoPatches(mesh, 12, 1, 1, &cut).ok());
+  const CutNetwork cut = testing::CutMesh("bunny00.off", 12, 1, 1);
   ASSERT_EQ(cut.patches, 22);
   const SurfaceResult r = SurfaceNetwork(cut.network);
   ExpectClosedAndValid(cut.network, r);
