@@ -36,6 +36,7 @@ struct SurfaceFlags {
   std::string cycles_file, islands = "inset";
   bool skip_longest = false, walls = false, ascii = false, json = false,
        local = false;
+  double weld = 0;
   uint32_t time_budget_ms = 0;
   std::vector<std::vector<std::vector<int32_t>>> cycles;  // 0-based
 
@@ -50,6 +51,7 @@ struct SurfaceFlags {
     o.set_fairing_continuity(fairing_continuity);
     o.set_skip_longest(skip_longest);
     o.set_walls(walls);
+    o.set_weld_distance(weld);
     o.set_islands(islands == "hole"  ? v1::NETWORK_ISLANDS_HOLE
                   : islands == "off" ? v1::NETWORK_ISLANDS_OFF
                                      : v1::NETWORK_ISLANDS_INSET);
@@ -290,6 +292,12 @@ void AddSurfaceCommand(CLI::App& app, Context* ctx) {
                 "their curves (a partition inside a box; without it a ring "
                 "of curves around a body is only a line between two "
                 "patches)")
+      ->group("Patches");
+  cmd->add_option("--weld", f->weld,
+                  "weld points closer than this (the network's units) into "
+                  "one: strokes whose ends nearly meet become junctions "
+                  "(default 0: only points at the same place)")
+      ->check(CLI::NonNegativeNumber)
       ->group("Patches");
   const std::string weights =
       "Metric weights (default: --squared-dihedral 1 --normal-deviation 0.25 "

@@ -56,7 +56,8 @@ std::vector<std::string> SurfaceNotes(const v1::SurfaceReport& r) {
   std::vector<std::string> notes;
   if (r.merged_vertices() > 0) {
     notes.push_back(std::to_string(r.merged_vertices()) +
-                    " points welded to an earlier one at the same place");
+                    " points welded to an earlier one (at the same place, or "
+                    "within --weld)");
   }
   if (r.dangling_size() > 0) {
     notes.push_back(std::to_string(r.dangling_size()) +

@@ -21,6 +21,7 @@ Status SurfaceOptionsFromWire(const v1::SurfaceOptions& wire,
   }
   o->skip_longest = wire.skip_longest();
   o->walls = wire.walls();
+  o->weld_distance = wire.weld_distance();
   switch (wire.islands()) {
     case v1::NETWORK_ISLANDS_INSET:
       o->islands = NetworkIslands::kInset;

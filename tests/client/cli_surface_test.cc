@@ -134,6 +134,37 @@ TEST_F(SurfaceCliTest, WallsOnlyWithTheFlag) {
   EXPECT_NE(r.out.find("a wall (curves"), std::string::npos) << r.out;
 }
 
+// A triangle and a square that share an edge, drawn as three strokes whose
+// ends miss each other by up to 0.003: with --weld 0.01 they meet at two
+// junctions and close (the two faces and the one around both, as a
+// network with no open rim does), locally and over the server; without,
+// every stroke dangles and nothing is surfaced (exit 2).
+TEST_F(SurfaceCliTest, WeldJoinsStrokesThatNearlyMeet) {
+  {
+    std::ofstream strokes(Path("strokes.obj"));
+    strokes << "v 0 0 0\nv 1 0 0\n"  // shared edge
+            << "v 1.002 0.001 0\nv 1 1 0\nv 0 1 0\nv 0.001 0.003 0\n"  // square
+            << "v 0.003 -0.001 0\nv 0.5 -1 0.2\nv 0.998 -0.002 0\n"  // triangle
+            << "l 1 2\nl 3 4 5 6\nl 7 8 9\n";
+  }
+  auto r = Dotctl("surface --local " + Path("strokes.obj") + " -o " +
+                  Path("x.ply") + " --json");
+  EXPECT_EQ(r.code, 2) << r.out;
+  for (const std::string& where : {std::string("--local "), flag_}) {
+    r = Dotctl("surface " + where + Path("strokes.obj") + " --weld 0.01 -o " +
+               Path("welded.ply") + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"surfaced\":3,"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"closed\":true"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("within --weld"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"merged_vertices\":4"), std::string::npos) << r.out;
+  }
+  r = Dotctl("surface --local " + Path("strokes.obj") + " --weld -1 -o " +
+             Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--weld"), std::string::npos) << r.out;
+}
+
 TEST_F(SurfaceCliTest, BadInputsAreNamed) {
   {
     std::ofstream bad(Path("bad.obj"));

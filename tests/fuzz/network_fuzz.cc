@@ -43,11 +43,12 @@ const dot::SurfaceOptions* g_options = nullptr;
 void PrintInput() {
   if (g_options != nullptr) {
     std::fprintf(
-        stderr, "stage %s, skip_longest %d, islands %s, %zu user cycles:\n",
+        stderr,
+        "stage %s, skip_longest %d, islands %s, weld %g, %zu user cycles:\n",
         std::string(dot::FillStageName(g_options->stage)).c_str(),
         g_options->skip_longest ? 1 : 0,
         std::string(dot::NetworkIslandsName(g_options->islands)).c_str(),
-        g_options->cycles.size());
+        g_options->weld_distance, g_options->cycles.size());
     for (const auto& patch : g_options->cycles) {
       for (const auto& loop : patch) {
         std::fprintf(stderr, " |");
@@ -112,6 +113,10 @@ dot::CurveNetwork Decode(FuzzedDataProvider* in, dot::SurfaceOptions* o) {
   o->skip_longest = in->ConsumeBool();
   o->islands =
       static_cast<dot::NetworkIslands>(in->ConsumeIntegralInRange(0, 2));
+  // Last, so that older corpus inputs decode as they did (no weld).
+  if (in->ConsumeIntegralInRange(0, 7) == 1) {
+    o->weld_distance = 0.5 * in->ConsumeIntegralInRange(1, 4);
+  }
   return net;
 }
 

@@ -175,6 +175,22 @@ def test_end_points_with_equal_coordinates_are_welded(client):
         "a welded copy is used"
 
 
+def test_stroke_ends_that_nearly_meet_are_welded_when_asked(client):
+    v, lines = cube_network(3, shared_corners=False)
+    ends = sorted({line[0] for line in lines} | {line[-1] for line in lines})
+    rng = np.random.default_rng(7)
+    v = v.copy()
+    v[ends] += rng.uniform(-0.003, 0.003, (len(ends), 3))  # a sketch's miss
+    with pytest.raises(dot_client.DotError):  # every stroke dangles
+        client.surface_network(v, lines, stage="triangulate")
+    r = client.surface_network(v, lines, stage="triangulate",
+                               weld_distance=0.02)
+    assert r.report.merged_vertices == 16 and r.report.junctions == 8
+    assert r.report.closed and r.report.surfaced == 6
+    assert np.array_equal(r.vertices[:len(v)], v)  # every point as sent
+    assert r.report.intersecting_pairs == 0
+
+
 def test_user_cycles_join_two_rims_into_a_tube(client):
     v, lines = rims(24)
     # Alone, each closed rim bounds a disk.
@@ -363,6 +379,8 @@ CUBE_V, CUBE_LINES = cube_network(2)
     (CUBE_V, CUBE_LINES, {"skip_longest": 1}, "skip_longest"),
     (CUBE_V, CUBE_LINES, {"islands": "auto"}, "islands must be one of"),
     (CUBE_V, CUBE_LINES, {"walls": "yes"}, "walls"),
+    (CUBE_V, CUBE_LINES, {"weld_distance": -1}, "weld_distance"),
+    (CUBE_V, CUBE_LINES, {"weld_distance": float("nan")}, "weld_distance"),
     (CUBE_V, CUBE_LINES, {"time_budget_ms": -1}, "time_budget_ms"),
 ])
 def test_invalid_networks_are_refused_before_the_call(vertices, polylines,

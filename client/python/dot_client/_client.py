@@ -844,6 +844,7 @@ class Client:
                         skip_longest: Optional[bool] = None,
                         islands: Optional[str] = None,
                         walls: Optional[bool] = None,
+                        weld_distance: Optional[float] = None,
                         time_budget_ms: Optional[int] = None,
                         memory_budget_bytes: Optional[int] = None,
                         progress: Optional[Callable[[SurfaceProgress],
@@ -862,7 +863,8 @@ class Client:
         first vertex is closed), as a list of int sequences of any lengths
         or a (P, k) array ((E, 2): one polyline per edge, as Blender's mesh
         edges). Curves meet where they share a vertex id or exactly the
-        same coordinates (the server welds those); where other than two
+        same coordinates (the server welds those; with ``weld_distance``
+        also points that close); where other than two
         curve pieces meet is a junction. ``normals``: optional (V, 3)
         surface normals at the vertices (sent as the channel
         ``"normal"``), for the ``normal_deviation`` metric.
@@ -879,8 +881,9 @@ class Client:
         ``skip_longest``, ``islands`` (a closed curve alone inside a found
         face: ``"inset"``, ``"hole"`` or ``"off"``; see
         :class:`SurfaceOptions`), ``walls`` (also find flat cycles that
-        make a third patch on their curves), ``time_budget_ms``,
-        ``memory_budget_bytes``.
+        make a third patch on their curves), ``weld_distance`` (weld
+        points closer than this: strokes whose ends nearly meet),
+        ``time_budget_ms``, ``memory_budget_bytes``.
 
         ``progress(SurfaceProgress)`` is called once the cycles are found
         and as patches are triangulated; an exception it raises (also
@@ -904,7 +907,7 @@ class Client:
             absolute_weights=absolute_weights, density=density,
             fairing_continuity=fairing_continuity,
             skip_longest=skip_longest, islands=islands, walls=walls,
-            time_budget_ms=time_budget_ms,
+            weld_distance=weld_distance, time_budget_ms=time_budget_ms,
             memory_budget_bytes=memory_budget_bytes)
         v = check.points("vertices", vertices)
         lines = check.polylines(polylines, len(v))

@@ -1067,7 +1067,10 @@ class SurfaceOptions(_Options):
     hole in the face); ``"off"`` a patch of its own only. ``walls``: also
     find walls, flat cycles that make a third patch on their curves (a
     partition inside a box; default False: a ring of curves around a body
-    is only the line between two patches).
+    is only the line between two patches). ``weld_distance``: points
+    closer than this (the network's units) are welded into one, the first
+    of them, so that strokes whose ends nearly meet become junctions
+    (default 0: only points at exactly the same place).
     ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
     (0: the server's).
     """
@@ -1082,6 +1085,7 @@ class SurfaceOptions(_Options):
     skip_longest: bool = False
     islands: str = "inset"
     walls: bool = False
+    weld_distance: float = 0.0
     time_budget_ms: int = 0
     memory_budget_bytes: int = 0
 
@@ -1091,6 +1095,8 @@ class SurfaceOptions(_Options):
         _set(self, "islands", check.choice("islands", self.islands,
                                            list(_NETWORK_ISLANDS)))
         _set(self, "walls", check.flag("walls", self.walls))
+        _set(self, "weld_distance", check.number(
+            "weld_distance", self.weld_distance, minimum=0))
         if self.weights is not None:
             _set(self, "weights", _nonzero_weights(self.weights))
         _set(self, "absolute_weights", check.flag("absolute_weights",
@@ -1124,6 +1130,7 @@ class SurfaceOptions(_Options):
         o.skip_longest = self.skip_longest
         o.islands = _NETWORK_ISLANDS[self.islands]
         o.walls = self.walls
+        o.weld_distance = self.weld_distance
         o.time_budget_ms = self.time_budget_ms
         o.memory_budget_bytes = self.memory_budget_bytes
         return o

@@ -93,9 +93,12 @@ struct NetworkGraph {
 // non-finite coordinate or one beyond 1e100 in magnitude, a polyline of fewer
 // than 2 points, an edge from a point to itself, two polylines along one edge
 // (duplicate curves), or two curves that cross or touch away from a shared
-// vertex (exact predicates).
+// vertex (exact predicates). Points are welded where their coordinates are
+// equal, and with `weld_distance` > 0 where they lie within it of each other
+// (transitively: strokes that nearly meet become junctions), each into the
+// first of its group; an edge whose ends are welded together is dropped.
 Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
-                         const Control& control = {});
+                         const Control& control = {}, double weld_distance = 0);
 
 // One run of a curve in a cycle: the curve, and whether it is run from its
 // last vertex to its first.
@@ -216,6 +219,10 @@ Status CyclesFromVertices(
 //                   kInset, kHole or kOff. Default kInset.
 //  walls            also find walls among the automatic cycles
 //                   (CycleOptions). Default false.
+//  weld_distance    points closer than this (network units) are welded
+//                   into one, the first of them (BuildNetworkGraph): for
+//                   sketched strokes whose ends nearly meet. Default 0:
+//                   only points at exactly the same place.
 //  threads          patches solved at once; 0: all cores. Default 0.
 struct SurfaceOptions {
   MetricWeights weights = DefaultSurfaceWeights();
@@ -228,6 +235,7 @@ struct SurfaceOptions {
   bool skip_longest = false;
   NetworkIslands islands = NetworkIslands::kInset;
   bool walls = false;
+  double weld_distance = 0;
   int threads = 0;
 
   static MetricWeights DefaultSurfaceWeights();

@@ -8,6 +8,8 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -15,6 +17,7 @@
 
 #include "dot/network.h"
 #include "util/run_control.h"
+#include "util/union_find.h"
 
 namespace dot {
 namespace {
@@ -32,8 +35,87 @@ struct Edge {
   int32_t input_a, input_b;
 };
 
-// Welds points with equal coordinates; keeps input order.
-Status Weld(const CurveNetwork& net, NetworkGraph* g) {
+// Per used point, the first point of its group: equal coordinates, and
+// with `distance` > 0 any point within it of one of the group (a sketch's
+// strokes that nearly meet), found through a grid of cells `distance`
+// wide.
+Status WeldGroups(const std::vector<Vec3>& points,
+                  const std::vector<char>& used, double distance,
+                  const Control& control, std::vector<int32_t>* first) {
+  const size_t n = points.size();
+  first->assign(n, -1);
+  if (distance <= 0) {
+    std::map<std::tuple<double, double, double>, int32_t> by_point;
+    for (size_t i = 0; i < n; ++i) {
+      if (!used[i]) continue;
+      const Vec3& p = points[i];
+      const auto key =
+          std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
+                          p.z == 0 ? 0.0 : p.z);  // -0 == 0
+      (*first)[i] =
+          by_point.emplace(key, static_cast<int32_t>(i)).first->second;
+    }
+    return OkStatus();
+  }
+  using Cell = std::array<int64_t, 3>;
+  auto cell_of = [&](const Vec3& p) {
+    return Cell{static_cast<int64_t>(std::floor(p.x / distance)),
+                static_cast<int64_t>(std::floor(p.y / distance)),
+                static_cast<int64_t>(std::floor(p.z / distance))};
+  };
+  std::map<Cell, std::vector<int32_t>> grid;
+  for (size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    const Vec3& p = points[i];
+    // Cells are indexed by 64-bit integers: at most 1e15 cells across.
+    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) / distance >
+        1e15) {
+      return InvalidArgument(
+          "the weld distance " + std::to_string(distance) +
+          " is too small for " + Vertex(static_cast<int32_t>(i)) +
+          "'s coordinates (at most 1e15 times smaller than them)");
+    }
+    grid[cell_of(p)].push_back(static_cast<int32_t>(i));
+  }
+  RunTicker ticker(control, "the network's weld");
+  UnionFind groups(n);
+  for (const auto& [cell, members] : grid) {
+    for (int64_t dx = -1; dx <= 1; ++dx) {
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          const Cell near = {cell[0] + dx, cell[1] + dy, cell[2] + dz};
+          if (near < cell) continue;  // each pair of cells once
+          const auto it = grid.find(near);
+          if (it == grid.end()) continue;
+          for (int32_t a : members) {
+            for (int32_t b : it->second) {
+              if (!ticker.Tick()) return ticker.status();
+              if ((near == cell && b <= a) ||
+                  groups.Find(a) == groups.Find(b) ||
+                  Distance(points[a], points[b]) > distance) {
+                continue;
+              }
+              groups.Join(a, b);
+            }
+          }
+        }
+      }
+    }
+  }
+  std::vector<int32_t> least(n, -1);  // per root, its first point
+  for (size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    int32_t& l = least[groups.Find(static_cast<int32_t>(i))];
+    if (l < 0) l = static_cast<int32_t>(i);
+    (*first)[i] = l;
+  }
+  return OkStatus();
+}
+
+// Welds points with equal coordinates, and those within `distance` of
+// each other (transitively); keeps input order.
+Status Weld(const CurveNetwork& net, double distance, const Control& control,
+            NetworkGraph* g) {
   const size_t n = net.vertices.size();
   std::vector<char> used(n, 0);
   for (size_t p = 0; p < net.polylines.size(); ++p) {
@@ -57,8 +139,6 @@ Status Weld(const CurveNetwork& net, NetworkGraph* g) {
                            " normals for " + std::to_string(n) +
                            " vertices: give one per vertex or none");
   }
-  std::map<std::tuple<double, double, double>, int32_t> by_point;
-  g->vertex_of_input.assign(n, -1);
   for (size_t i = 0; i < n; ++i) {  // unused ones too: the output keeps them
     if (!IsFinite(net.vertices[i])) {
       return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
@@ -73,40 +153,42 @@ Status Weld(const CurveNetwork& net, NetworkGraph* g) {
                              "scale the network down");
     }
   }
+  g->vertex_of_input.assign(n, -1);
+  std::vector<int32_t> first;
+  Status s = WeldGroups(net.vertices, used, distance, control, &first);
+  if (!s.ok()) return s;
   for (size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
-    const Vec3& p = net.vertices[i];
-    const auto key = std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
-                                     p.z == 0 ? 0.0 : p.z);  // -0 == 0
-    auto [it, added] =
-        by_point.emplace(key, static_cast<int32_t>(g->vertices.size()));
-    if (added) {
-      g->vertices.push_back(p);
-      g->input_of_vertex.push_back(static_cast<int32_t>(i));
-      if (!net.normals.empty()) {
-        const Vec3& nv = net.normals[i];
-        if (!IsFinite(nv) || Norm(nv) == 0) {
-          return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
-                                 " has a normal that is zero or not finite");
-        }
-        g->normals.push_back(Normalized(nv));
-      }
-    } else {
+    if (first[i] != static_cast<int32_t>(i)) {
       ++g->merged_vertices;
+      g->vertex_of_input[i] = g->vertex_of_input[first[i]];
+      continue;
     }
-    g->vertex_of_input[i] = it->second;
+    g->vertex_of_input[i] = static_cast<int32_t>(g->vertices.size());
+    g->vertices.push_back(net.vertices[i]);
+    g->input_of_vertex.push_back(static_cast<int32_t>(i));
+    if (!net.normals.empty()) {
+      const Vec3& nv = net.normals[i];
+      if (!IsFinite(nv) || Norm(nv) == 0) {
+        return InvalidArgument(Vertex(static_cast<int32_t>(i)) +
+                               " has a normal that is zero or not finite");
+      }
+      g->normals.push_back(Normalized(nv));
+    }
   }
   return OkStatus();
 }
 
 Status CollectEdges(const CurveNetwork& net, const NetworkGraph& g,
-                    std::vector<Edge>* edges) {
+                    double weld_distance, std::vector<Edge>* edges) {
   std::unordered_map<uint64_t, int32_t> seen;  // undirected key -> edge
   for (size_t p = 0; p < net.polylines.size(); ++p) {
     const auto& line = net.polylines[p];
     for (size_t k = 0; k + 1 < line.size(); ++k) {
       const Edge e{g.vertex_of_input[line[k]], g.vertex_of_input[line[k + 1]],
                    static_cast<int32_t>(p), line[k], line[k + 1]};
+      // An edge shorter than the weld distance is welded to a point.
+      if (e.a == e.b && e.input_a != e.input_b && weld_distance > 0) continue;
       if (e.a == e.b) {
         return InvalidArgument(
             Polyline(p) + " joins " + Vertex(e.input_a) + " to " +
@@ -293,15 +375,20 @@ void PruneDangling(NetworkGraph* g) {
 }  // namespace
 
 Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
-                         const Control& control) {
+                         const Control& control, double weld_distance) {
   *out = {};
   if (network.polylines.empty()) {
     return InvalidArgument("the network has no polylines");
   }
-  Status s = Weld(network, out);
+  if (!(weld_distance >= 0) || !std::isfinite(weld_distance)) {
+    return InvalidArgument(
+        "the weld distance must be a finite number >= 0, not " +
+        std::to_string(weld_distance));
+  }
+  Status s = Weld(network, weld_distance, control, out);
   if (!s.ok()) return s;
   std::vector<Edge> edges;
-  s = CollectEdges(network, *out, &edges);
+  s = CollectEdges(network, *out, weld_distance, &edges);
   if (!s.ok()) return s;
   s = CheckCrossings(*out, edges, control);
   if (!s.ok()) return s;

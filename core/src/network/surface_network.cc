@@ -570,6 +570,10 @@ Status CheckSurfaceOptions(const SurfaceOptions& options) {
   fill.density = options.density;
   fill.fairing_continuity = options.fairing_continuity;
   fill.threads = options.threads;
+  if (!(options.weld_distance >= 0) || !std::isfinite(options.weld_distance)) {
+    return InvalidArgument("weld_distance must be a finite number >= 0, not " +
+                           std::to_string(options.weld_distance));
+  }
   return CheckFillOptions(fill);
 }
 
@@ -602,7 +606,7 @@ SurfaceResult Surface(const CurveNetwork& network,
   Status s = CheckSurfaceOptions(options);
   if (!s.ok()) return fail(s);
   NetworkGraph g;
-  s = BuildNetworkGraph(network, &g, control);
+  s = BuildNetworkGraph(network, &g, control, options.weld_distance);
   if (!s.ok()) return fail(s);
   for (int32_t v : g.vertex_of_input) {
     out.vertex_of_input.push_back(v < 0 ? -1 : g.input_of_vertex[v]);

@@ -3,10 +3,13 @@
 // welding, dangling curves, and refusals that name what is wrong.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "dot/network.h"
 #include "dot/network_samples.h"
+#include "dot/validate.h"
 
 namespace dot {
 namespace {
@@ -114,6 +117,87 @@ TEST(NetworkGraphTest, NamesDuplicateAndCrossingCurves) {
   EXPECT_NE(s.message.find("same place"), std::string::npos) << s.message;
   s = Build("v 0 0 0\nv nan 0 0\nl 1 2\n", &g);
   EXPECT_FALSE(s.ok());
+}
+
+// The cube's 12 edges as strokes of their own, each end off the corner by
+// its own amount, at most 0.009 (as a sketch draws them): with a weld
+// distance of 0.02 the ends meet at 8 junctions, each corner welded into
+// the first stroke end that reaches it, and the box closes; without, every
+// stroke dangles.
+CurveNetwork CubeStrokes() {
+  const CurveNetwork cube = CubeNetwork(4);
+  CurveNetwork strokes;
+  int jitter = 0;
+  for (const auto& line : cube.polylines) {
+    std::vector<int32_t> ids;
+    for (size_t k = 0; k < line.size(); ++k) {
+      Vec3 p = cube.vertices[line[k]];
+      if (k == 0 || k + 1 == line.size()) {
+        const double d = 0.0001 * ++jitter;  // 0.0001 .. 0.0024
+        p = p + Vec3{d, -2 * d, 3 * d};
+      }
+      ids.push_back(static_cast<int32_t>(strokes.vertices.size()));
+      strokes.vertices.push_back(p);
+    }
+    strokes.polylines.push_back(ids);
+  }
+  return strokes;
+}
+
+TEST(NetworkGraphTest, WeldsStrokeEndsWithinTheWeldDistance) {
+  const CurveNetwork strokes = CubeStrokes();
+  NetworkGraph g;
+  ASSERT_TRUE(BuildNetworkGraph(strokes, &g).ok());
+  EXPECT_EQ(g.dangling.size(), 12u);  // nothing meets
+  ASSERT_TRUE(BuildNetworkGraph(strokes, &g, {}, 0.02).ok());
+  EXPECT_TRUE(g.dangling.empty());
+  EXPECT_EQ(g.curves.size(), 12u);
+  EXPECT_EQ(g.merged_vertices, 24 - 8);
+  for (size_t i = 0; i < strokes.vertices.size(); ++i) {
+    // Each welded point names the first of its group, at its place.
+    const int32_t v = g.vertex_of_input[i];
+    ASSERT_GE(v, 0);
+    EXPECT_LE(g.input_of_vertex[v], static_cast<int32_t>(i));
+    EXPECT_LE(Distance(g.vertices[v], strokes.vertices[i]), 0.02);
+  }
+  SurfaceOptions o;
+  o.weld_distance = 0.02;
+  const SurfaceResult r = SurfaceNetwork(strokes, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_TRUE(r.report.closed);
+  EXPECT_EQ(r.report.surfaced, 6);
+  EXPECT_EQ(r.report.merged_vertices, 16);
+  EXPECT_EQ(CountIntersectingPairs(r.mesh.vertices, r.mesh.triangles), 0);
+}
+
+TEST(NetworkGraphTest, WeldDropsEdgesItShrinksToAPointAndRefusesBadDistances) {
+  // A triangle drawn with a stroke that overshoots its first corner by
+  // 0.001, onto its first edge (a touch, refused), and a 0.001 stub back:
+  // welded, the stub is gone and the triangle closes at its first point.
+  NetworkGraph g;
+  std::istringstream in(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.001 0 0\nl 1 2 3 4\nl 4 1\n");
+  CurveNetwork net;
+  ASSERT_TRUE(ReadNetworkObj(in, &net).ok());
+  const Status touch = BuildNetworkGraph(net, &g);
+  EXPECT_NE(touch.message.find("cross"), std::string::npos) << touch.message;
+  ASSERT_TRUE(BuildNetworkGraph(net, &g, {}, 0.01).ok());
+  ASSERT_EQ(g.curves.size(), 1u);
+  EXPECT_TRUE(g.curves[0].closed());
+  EXPECT_EQ(g.curves[0].vertices.size(), 4u);  // 0, 1, 2 and 0 again
+  for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+    const Status s = BuildNetworkGraph(net, &g, {}, bad);
+    EXPECT_EQ(s.code, StatusCode::kInvalidArgument);
+    EXPECT_NE(s.message.find("weld distance"), std::string::npos) << s.message;
+    SurfaceOptions o;
+    o.weld_distance = bad;
+    EXPECT_NE(CheckSurfaceOptions(o).message.find("weld_distance"),
+              std::string::npos);
+  }
+  // Cells too many to index: refused, naming the vertex.
+  const Status s = BuildNetworkGraph(net, &g, {}, 1e-300);
+  EXPECT_NE(s.message.find("too small for vertex 2"), std::string::npos)
+      << s.message;
 }
 
 }  // namespace
