@@ -293,10 +293,12 @@ void AddSurfaceCommand(CLI::App& app, Context* ctx) {
                 "of curves around a body is only a line between two "
                 "patches)")
       ->group("Patches");
-  cmd->add_option("--weld", f->weld,
-                  "weld points closer than this (the network's units) into "
-                  "one: strokes whose ends nearly meet become junctions "
-                  "(default 0: only points at the same place)")
+  cmd->add_option(
+         "--weld", f->weld,
+         "weld each stroke end to the nearest point within this distance "
+         "(the network's units) not on its own stroke: strokes "
+         "whose ends nearly meet become junctions (default 0: only "
+         "points at the same place)")
       ->check(CLI::NonNegativeNumber)
       ->group("Patches");
   const std::string weights =

@@ -115,7 +115,8 @@ dot::CurveNetwork Decode(FuzzedDataProvider* in, dot::SurfaceOptions* o) {
       static_cast<dot::NetworkIslands>(in->ConsumeIntegralInRange(0, 2));
   // Last, so that older corpus inputs decode as they did (no weld).
   if (in->ConsumeIntegralInRange(0, 7) == 1) {
-    o->weld_distance = 0.5 * in->ConsumeIntegralInRange(1, 4);
+    // Between the grid's distances (1, 1.41, 1.73, 2, ...), not on them.
+    o->weld_distance = 0.3 + 0.5 * in->ConsumeIntegralInRange(1, 4);
   }
   return net;
 }

@@ -882,7 +882,7 @@ class Client:
         face: ``"inset"``, ``"hole"`` or ``"off"``; see
         :class:`SurfaceOptions`), ``walls`` (also find flat cycles that
         make a third patch on their curves), ``weld_distance`` (weld
-        points closer than this: strokes whose ends nearly meet),
+        stroke ends to points within it: strokes that nearly meet),
         ``time_budget_ms``, ``memory_budget_bytes``.
 
         ``progress(SurfaceProgress)`` is called once the cycles are found

@@ -1067,10 +1067,11 @@ class SurfaceOptions(_Options):
     hole in the face); ``"off"`` a patch of its own only. ``walls``: also
     find walls, flat cycles that make a third patch on their curves (a
     partition inside a box; default False: a ring of curves around a body
-    is only the line between two patches). ``weld_distance``: points
-    closer than this (the network's units) are welded into one, the first
-    of them, so that strokes whose ends nearly meet become junctions
-    (default 0: only points at exactly the same place).
+    is only the line between two patches). ``weld_distance``: each free
+    end of a polyline is welded to the nearest point within this distance
+    (the network's units) not on its own polyline, so that strokes whose
+    ends nearly meet become junctions (default 0: only points at exactly
+    the same place).
     ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
     (0: the server's).
     """

@@ -7,7 +7,8 @@
 //
 // A staircase of entry points, each usable alone:
 //   ReadNetworkFile    OBJ 'v'/'l' lines or text blocks -> CurveNetwork;
-//   BuildNetworkGraph  welds equal points, splits polylines into curves
+//   BuildNetworkGraph  welds equal points (and stroke ends that nearly
+//                      meet, when asked), splits polylines into curves
 //                      between junctions, refuses duplicate and crossing
 //                      curves, sets dangling curves apart;
 //   FindNetworkCycles  the cycles that bound patches, from a rotation
@@ -76,7 +77,7 @@ struct NetworkCurve {
 };
 
 // The network as a graph of curves. Vertices are the input's points that
-// lie on a polyline, equal coordinates welded, in input order.
+// lie on a polyline, welded (BuildNetworkGraph), in input order.
 struct NetworkGraph {
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;             // empty or one per vertex
@@ -87,6 +88,7 @@ struct NetworkGraph {
   // pruned repeatedly: they bound no patch. Sorted ids.
   std::vector<int32_t> dangling;
   int32_t merged_vertices = 0;  // input points welded to an earlier one
+  int32_t welded_edges = 0;     // edges whose two ends were welded: gone
 };
 
 // kInvalidArgument names what is not a network: an id out of range, a
@@ -94,11 +96,17 @@ struct NetworkGraph {
 // than 2 points, an edge from a point to itself, two polylines along one edge
 // (duplicate curves), or two curves that cross or touch away from a shared
 // vertex (exact predicates). Points are welded where their coordinates are
-// equal, and with `weld_distance` > 0 where they lie within it of each other
-// (transitively: strokes that nearly meet become junctions), each into the
-// first of its group; an edge whose ends are welded together is dropped.
+// equal, and with `weld_distance` > 0 a polyline's free end with the
+// nearest point within that distance of it not on its own polyline (or its
+// other end: a stroke drawn closed), transitively: strokes whose ends fall
+// short of or past another stroke meet it there, and a stroke's inner
+// points never weld to each other. Each group is welded into its first point;
+// an edge whose ends are welded together is dropped (welded_edges). A distance
+// that puts more than 2e8 pairs side by side is refused.
 Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
                          const Control& control = {}, double weld_distance = 0);
+// kInvalidArgument unless `weld_distance` is a finite number >= 0.
+Status CheckWeldDistance(double weld_distance);
 
 // One run of a curve in a cycle: the curve, and whether it is run from its
 // last vertex to its first.
@@ -219,10 +227,10 @@ Status CyclesFromVertices(
 //                   kInset, kHole or kOff. Default kInset.
 //  walls            also find walls among the automatic cycles
 //                   (CycleOptions). Default false.
-//  weld_distance    points closer than this (network units) are welded
-//                   into one, the first of them (BuildNetworkGraph): for
-//                   sketched strokes whose ends nearly meet. Default 0:
-//                   only points at exactly the same place.
+//  weld_distance    stroke ends are welded to the nearest point within this
+//                   distance (network units; BuildNetworkGraph says
+//                   which): for sketched strokes whose ends nearly meet.
+//                   Default 0: only points at exactly the same place.
 //  threads          patches solved at once; 0: all cores. Default 0.
 struct SurfaceOptions {
   MetricWeights weights = DefaultSurfaceWeights();

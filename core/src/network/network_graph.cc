@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -35,73 +36,104 @@ struct Edge {
   int32_t input_a, input_b;
 };
 
-// Per used point, the first point of its group: equal coordinates, and
-// with `distance` > 0 any point within it of one of the group (a sketch's
-// strokes that nearly meet), found through a grid of cells `distance`
-// wide.
-Status WeldGroups(const std::vector<Vec3>& points,
-                  const std::vector<char>& used, double distance,
-                  const Control& control, std::vector<int32_t>* first) {
+std::string Number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+// Distance checks the weld may make (about a second): a distance that puts
+// this many pairs of points side by side is refused, not computed.
+constexpr int64_t kMaxWeldChecks = 200'000'000;
+
+// Per used point, the first point of its group: points at equal
+// coordinates, and with `distance` > 0 a polyline's free end (a stroke's
+// end, as a sketch leaves it short of or past where it meets another) and
+// the nearest point within `distance` of it not on its own polyline (or
+// its other end: a stroke drawn closed), transitively. Points inside a
+// stroke never weld to each other, so a stroke sampled finer than the
+// distance keeps its shape. Found through a grid of cells `distance` wide.
+Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
+                  double distance, const Control& control,
+                  std::vector<int32_t>* first) {
+  const std::vector<Vec3>& points = net.vertices;
   const size_t n = points.size();
-  first->assign(n, -1);
-  if (distance <= 0) {
-    std::map<std::tuple<double, double, double>, int32_t> by_point;
-    for (size_t i = 0; i < n; ++i) {
-      if (!used[i]) continue;
-      const Vec3& p = points[i];
-      const auto key =
-          std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
-                          p.z == 0 ? 0.0 : p.z);  // -0 == 0
-      (*first)[i] =
-          by_point.emplace(key, static_cast<int32_t>(i)).first->second;
-    }
-    return OkStatus();
-  }
-  using Cell = std::array<int64_t, 3>;
-  auto cell_of = [&](const Vec3& p) {
-    return Cell{static_cast<int64_t>(std::floor(p.x / distance)),
-                static_cast<int64_t>(std::floor(p.y / distance)),
-                static_cast<int64_t>(std::floor(p.z / distance))};
-  };
-  std::map<Cell, std::vector<int32_t>> grid;
+  UnionFind groups(n);
+  std::map<std::tuple<double, double, double>, int32_t> by_point;
   for (size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
     const Vec3& p = points[i];
-    // Cells are indexed by 64-bit integers: at most 1e15 cells across.
-    if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) / distance >
-        1e15) {
-      return InvalidArgument(
-          "the weld distance " + std::to_string(distance) +
-          " is too small for " + Vertex(static_cast<int32_t>(i)) +
-          "'s coordinates (at most 1e15 times smaller than them)");
-    }
-    grid[cell_of(p)].push_back(static_cast<int32_t>(i));
+    const auto key = std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
+                                     p.z == 0 ? 0.0 : p.z);  // -0 == 0
+    const auto [it, added] = by_point.emplace(key, static_cast<int32_t>(i));
+    if (!added) groups.Join(static_cast<int32_t>(i), it->second);
   }
-  RunTicker ticker(control, "the network's weld");
-  UnionFind groups(n);
-  for (const auto& [cell, members] : grid) {
-    for (int64_t dx = -1; dx <= 1; ++dx) {
-      for (int64_t dy = -1; dy <= 1; ++dy) {
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          const Cell near = {cell[0] + dx, cell[1] + dy, cell[2] + dz};
-          if (near < cell) continue;  // each pair of cells once
-          const auto it = grid.find(near);
-          if (it == grid.end()) continue;
-          for (int32_t a : members) {
-            for (int32_t b : it->second) {
-              if (!ticker.Tick()) return ticker.status();
-              if ((near == cell && b <= a) ||
-                  groups.Find(a) == groups.Find(b) ||
-                  Distance(points[a], points[b]) > distance) {
-                continue;
+  if (distance > 0) {
+    using Cell = std::array<int64_t, 3>;
+    auto cell_of = [&](const Vec3& p) {
+      return Cell{static_cast<int64_t>(std::floor(p.x / distance)),
+                  static_cast<int64_t>(std::floor(p.y / distance)),
+                  static_cast<int64_t>(std::floor(p.z / distance))};
+    };
+    std::map<Cell, std::vector<int32_t>> grid;
+    for (size_t i = 0; i < n; ++i) {
+      if (!used[i]) continue;
+      const Vec3& p = points[i];
+      // Cells are indexed by 64-bit integers: at most 1e15 cells across.
+      if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) / distance >
+          1e15) {
+        return InvalidArgument(
+            "the weld distance " + Number(distance) + " is too small for " +
+            Vertex(static_cast<int32_t>(i)) +
+            "'s coordinates (at most 1e15 times smaller than them)");
+      }
+      grid[cell_of(p)].push_back(static_cast<int32_t>(i));
+    }
+    RunTicker ticker(control, "the network's weld");
+    int64_t checks = 0;
+    for (size_t l = 0; l < net.polylines.size(); ++l) {
+      const auto& line = net.polylines[l];
+      if (line.front() == line.back()) continue;  // closed: no free end
+      std::vector<int32_t> own(line.begin(), line.end());
+      std::sort(own.begin(), own.end());
+      for (const int32_t end : {line.front(), line.back()}) {
+        const int32_t other = end == line.front() ? line.back() : line.front();
+        const Cell c = cell_of(points[end]);
+        // The nearest point it may weld to (the first of equals).
+        double best = distance;
+        int32_t nearest = -1;
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+          for (int64_t dy = -1; dy <= 1; ++dy) {
+            for (int64_t dz = -1; dz <= 1; ++dz) {
+              const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+              if (it == grid.end()) continue;
+              for (const int32_t q : it->second) {
+                if (!ticker.Tick()) return ticker.status();
+                if (++checks > kMaxWeldChecks) {
+                  return InvalidArgument(
+                      "the weld distance " + Number(distance) +
+                      " puts more than " + std::to_string(kMaxWeldChecks) +
+                      " pairs of points side by side: give one nearer the "
+                      "gaps between stroke ends");
+                }
+                const bool closes = q == other && line.size() >= 4;
+                if (!closes && std::binary_search(own.begin(), own.end(), q)) {
+                  continue;
+                }
+                const double d = Distance(points[end], points[q]);
+                if (d < best || (d == best && (nearest < 0 || q < nearest))) {
+                  best = d;
+                  nearest = q;
+                }
               }
-              groups.Join(a, b);
             }
           }
         }
+        if (nearest >= 0) groups.Join(end, nearest);
       }
     }
   }
+  first->assign(n, -1);
   std::vector<int32_t> least(n, -1);  // per root, its first point
   for (size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
@@ -155,7 +187,7 @@ Status Weld(const CurveNetwork& net, double distance, const Control& control,
   }
   g->vertex_of_input.assign(n, -1);
   std::vector<int32_t> first;
-  Status s = WeldGroups(net.vertices, used, distance, control, &first);
+  Status s = WeldGroups(net, used, distance, control, &first);
   if (!s.ok()) return s;
   for (size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
@@ -179,16 +211,20 @@ Status Weld(const CurveNetwork& net, double distance, const Control& control,
   return OkStatus();
 }
 
-Status CollectEdges(const CurveNetwork& net, const NetworkGraph& g,
-                    double weld_distance, std::vector<Edge>* edges) {
+Status CollectEdges(const CurveNetwork& net, double weld_distance,
+                    NetworkGraph* graph, std::vector<Edge>* edges) {
+  const NetworkGraph& g = *graph;
   std::unordered_map<uint64_t, int32_t> seen;  // undirected key -> edge
   for (size_t p = 0; p < net.polylines.size(); ++p) {
     const auto& line = net.polylines[p];
     for (size_t k = 0; k + 1 < line.size(); ++k) {
       const Edge e{g.vertex_of_input[line[k]], g.vertex_of_input[line[k + 1]],
                    static_cast<int32_t>(p), line[k], line[k + 1]};
-      // An edge shorter than the weld distance is welded to a point.
-      if (e.a == e.b && e.input_a != e.input_b && weld_distance > 0) continue;
+      // An edge whose ends were welded together is gone.
+      if (e.a == e.b && e.input_a != e.input_b && weld_distance > 0) {
+        ++graph->welded_edges;
+        continue;
+      }
       if (e.a == e.b) {
         return InvalidArgument(
             Polyline(p) + " joins " + Vertex(e.input_a) + " to " +
@@ -374,21 +410,25 @@ void PruneDangling(NetworkGraph* g) {
 
 }  // namespace
 
+Status CheckWeldDistance(double weld_distance) {
+  if (weld_distance >= 0 && std::isfinite(weld_distance)) return OkStatus();
+  return InvalidArgument(
+      "the weld distance must be a finite number >= 0, not " +
+      Number(weld_distance));
+}
+
 Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
                          const Control& control, double weld_distance) {
   *out = {};
   if (network.polylines.empty()) {
     return InvalidArgument("the network has no polylines");
   }
-  if (!(weld_distance >= 0) || !std::isfinite(weld_distance)) {
-    return InvalidArgument(
-        "the weld distance must be a finite number >= 0, not " +
-        std::to_string(weld_distance));
-  }
-  Status s = Weld(network, weld_distance, control, out);
+  Status s = CheckWeldDistance(weld_distance);
+  if (!s.ok()) return s;
+  s = Weld(network, weld_distance, control, out);
   if (!s.ok()) return s;
   std::vector<Edge> edges;
-  s = CollectEdges(network, *out, weld_distance, &edges);
+  s = CollectEdges(network, weld_distance, out, &edges);
   if (!s.ok()) return s;
   s = CheckCrossings(*out, edges, control);
   if (!s.ok()) return s;

@@ -570,10 +570,8 @@ Status CheckSurfaceOptions(const SurfaceOptions& options) {
   fill.density = options.density;
   fill.fairing_continuity = options.fairing_continuity;
   fill.threads = options.threads;
-  if (!(options.weld_distance >= 0) || !std::isfinite(options.weld_distance)) {
-    return InvalidArgument("weld_distance must be a finite number >= 0, not " +
-                           std::to_string(options.weld_distance));
-  }
+  const Status weld = CheckWeldDistance(options.weld_distance);
+  if (!weld.ok()) return weld;
   return CheckFillOptions(fill);
 }
 
@@ -610,6 +608,10 @@ SurfaceResult Surface(const CurveNetwork& network,
   if (!s.ok()) return fail(s);
   for (int32_t v : g.vertex_of_input) {
     out.vertex_of_input.push_back(v < 0 ? -1 : g.input_of_vertex[v]);
+  }
+  if (g.welded_edges > 0) {
+    report.notes.push_back(std::to_string(g.welded_edges) +
+                           " edges dropped: the weld joined their ends");
   }
   report.curves = static_cast<int32_t>(g.curves.size());
   for (const NetworkCurve& c : g.curves) {

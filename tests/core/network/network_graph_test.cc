@@ -185,19 +185,58 @@ TEST(NetworkGraphTest, WeldDropsEdgesItShrinksToAPointAndRefusesBadDistances) {
   ASSERT_EQ(g.curves.size(), 1u);
   EXPECT_TRUE(g.curves[0].closed());
   EXPECT_EQ(g.curves[0].vertices.size(), 4u);  // 0, 1, 2 and 0 again
+  EXPECT_EQ(g.welded_edges, 1);                // the stub
   for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
     const Status s = BuildNetworkGraph(net, &g, {}, bad);
     EXPECT_EQ(s.code, StatusCode::kInvalidArgument);
     EXPECT_NE(s.message.find("weld distance"), std::string::npos) << s.message;
     SurfaceOptions o;
     o.weld_distance = bad;
-    EXPECT_NE(CheckSurfaceOptions(o).message.find("weld_distance"),
+    EXPECT_NE(CheckSurfaceOptions(o).message.find("weld distance"),
               std::string::npos);
   }
   // Cells too many to index: refused, naming the vertex.
   const Status s = BuildNetworkGraph(net, &g, {}, 1e-300);
   EXPECT_NE(s.message.find("too small for vertex 2"), std::string::npos)
       << s.message;
+}
+
+// Only stroke ends move: a stroke sampled every 0.001 keeps every point
+// under a weld distance of 0.01; a stroke whose end stops 0.004 short of
+// another's inner point meets it there (a junction splits that stroke);
+// ends 0.008 apart in a chain (A-B, B-C; A-C is 0.016) all meet.
+TEST(NetworkGraphTest, WeldJoinsStrokeEndsOnlyAndTransitively) {
+  CurveNetwork net;
+  auto stroke = [&](std::vector<Vec3> points) {
+    std::vector<int32_t> ids;
+    for (const Vec3& p : points) {
+      ids.push_back(static_cast<int32_t>(net.vertices.size()));
+      net.vertices.push_back(p);
+    }
+    net.polylines.push_back(ids);
+  };
+  std::vector<Vec3> fine;
+  for (int k = 0; k <= 1000; ++k) fine.push_back({0.001 * k, 0, 0});
+  stroke(fine);                             // 0 .. 1000, on y = 0
+  stroke({{0.5, 1, 0}, {0.5, 0.004, 0}});   // 1001, 1002: a T
+  stroke({{1.008, 0, 0}, {1.5, 0.5, 0}});   // 1003 ..
+  stroke({{1.016, 0, 0}, {1.5, -0.5, 0}});  // 1005 ..
+  NetworkGraph g;
+  ASSERT_TRUE(BuildNetworkGraph(net, &g, {}, 0.01).ok());
+  EXPECT_EQ(g.welded_edges, 0);
+  EXPECT_EQ(g.merged_vertices, 3);  // the T's foot, and the chain's two
+  // The T's foot is welded into the fine stroke's nearest point, x = 0.5,
+  // which becomes a junction (the points beside it, also within 0.01, stay).
+  EXPECT_EQ(g.vertex_of_input[1002], g.vertex_of_input[500]);
+  // The chain: the fine stroke's end (x = 1) and both others' ends.
+  EXPECT_EQ(g.vertex_of_input[1003], g.vertex_of_input[1000]);
+  EXPECT_EQ(g.vertex_of_input[1005], g.vertex_of_input[1000]);
+  // Every inner point of the fine stroke is still a vertex of its own.
+  for (int k = 1; k < 1000; ++k) {
+    EXPECT_EQ(g.input_of_vertex[g.vertex_of_input[k]], k);
+  }
+  // Curves: the fine stroke split at the T (two), the T, the chain's two.
+  EXPECT_EQ(g.curves.size(), 5u);
 }
 
 }  // namespace
