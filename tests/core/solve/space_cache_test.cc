@@ -167,7 +167,10 @@ TEST(SpaceCacheTest, ConcurrentSolvesShareItSafely) {
       ExpectSameResult(results[i], expected[i % problems.size()]);
     }
   }
-  EXPECT_GT(cache.counters().hits, 100);
+  // Threads that meet a space first at the same time each build it, so
+  // the first round may miss in every thread (48 of 144 solves measured
+  // 44 under ASan); the two later rounds always find it (4 x 2 x 12).
+  EXPECT_GE(cache.counters().hits, 96);
 }
 
 }  // namespace
