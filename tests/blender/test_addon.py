@@ -836,13 +836,18 @@ def cube_edges_curve(name, segments=4, jitter=0.0):
 
 def test_surface_curves_turns_a_cube_of_splines_into_a_closed_box():
     clear_scene()
-    # Spline ends 1e-8 apart still meet: welded before sending.
+    # Spline ends 1e-8 apart still meet: the server welds them (the
+    # default Weld Distance, 1e-4, as Blender's Merge by Distance).
     curve = cube_edges_curve("cube_edges", segments=4, jitter=1e-8)
     curve.location = (1, 2, 3)
     with Recording("surface_network") as rec:
         assert bpy.ops.mesh.dot_surface_curves() == {'FINISHED'}
     (args, kwargs, answer), = rec.calls
-    assert len(args[0]) == 8 + 12 * 3, "one vertex per curve point"
+    assert len(args[0]) == 12 * 5, "every spline's points, as evaluated"
+    assert sorted(len(line) for line in args[1]) == [5] * 12, \
+        "a polyline per spline"
+    assert abs(kwargs["options"].weld_distance - 1e-4) < 1e-9
+    assert answer.report.merged_vertices == 16  # 3 spline ends per corner
     assert answer.report.surfaced == 6 and answer.report.closed
     surface = bpy.context.active_object
     assert surface is not curve and surface.type == 'MESH'
@@ -874,6 +879,45 @@ def test_surface_curves_turns_a_cube_of_splines_into_a_closed_box():
         stage='TRIANGULATE', skip_longest=True, preset='MINIMAL_AREA') \
         == {'FINISHED'}
     check_mesh(bpy.context.active_object, boundary_edges=16)
+
+
+def test_surface_curves_welds_strokes_that_nearly_meet():
+    clear_scene()
+    # Every other stroke starts 0.003 off its corner, and the strokes are
+    # sampled every 0.02: with a weld of 0.05 only their free ends move
+    # (a weld of every point that close would collapse them). Unwelded,
+    # a moved end touches the stroke beside it: refused, naming them.
+    curve = cube_edges_curve("strokes", segments=50, jitter=0.003)
+    expect_report(lambda: bpy.ops.mesh.dot_surface_curves(
+        stage='TRIANGULATE', weld_distance=0), "curves cross", "polyline")
+    activate(curve)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(
+            stage='TRIANGULATE', weld_distance=0.05) == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert answer.report.merged_vertices == 16
+    assert answer.report.closed and answer.report.surfaced == 6
+    surface = bpy.context.active_object
+    check_mesh(surface, boundary_edges=0)
+    assert counts(surface)[0] == 8 + 12 * 49, "every stroke point kept"
+
+
+def test_surface_curves_of_an_edges_only_mesh_shares_its_junctions():
+    clear_scene()
+    # The cube's 12 edges as a wire mesh whose corners are shared: one
+    # polyline per edge between corners, nothing to weld.
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8)
+             if sum(abs(p - q) for p, q in
+                    zip(CUBE_CORNERS[a], CUBE_CORNERS[b])) == 1]
+    mesh_object("wire_cube", CUBE_CORNERS, edges=edges)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(stage='TRIANGULATE') \
+            == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert len(args[0]) == 8 and len(args[1]) == 12
+    assert answer.report.merged_vertices == 0
+    assert answer.report.closed and answer.report.surfaced == 6
+    check_mesh(bpy.context.active_object, boundary_edges=0)
 
 
 def test_surface_curves_circle_on_a_lid_is_an_island_or_a_hole():

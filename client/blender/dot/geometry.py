@@ -6,13 +6,12 @@ duplicate vertices, faces wound like their neighbours). FillHoles answers
 with patches (dot_client.FillPatches) in the ids of the triangles sent, so
 a patch is added as it is: its new vertices, its faces, and the faces
 whose triangles edge protection split, rebuilt. Curve networks for
-SurfaceNetwork: points welded, edges as polylines."""
+SurfaceNetwork: a wire mesh as polylines."""
 from collections import defaultdict
 
 import bmesh
 import numpy as np
 from mathutils import Vector
-from mathutils.kdtree import KDTree
 
 
 class MeshChanged(Exception):
@@ -402,45 +401,43 @@ def closed_loops_of_edges(bm):
     return selected_loops(bm)
 
 
-def curve_network(points, edges, relative_tolerance=1e-6):
+def curve_network(points, edges):
     """A curve network from a wire mesh (a curve converted: a vertex per
-    evaluated point, an edge per segment; splines do not share vertices):
-    points closer than `relative_tolerance` times the bounding-box diagonal
-    welded into the first of them, so that spline ends that meet become
-    junctions (the server welds only exactly equal points), then only the
-    points on an edge kept. Returns (vertices (V, 3), edges (E, 2) over
-    them, each once, none from a point to itself; the number of points
-    welded)."""
+    evaluated point, an edge per segment; splines do not share vertices,
+    so their ends meet only by coordinates, which the server welds): the
+    points on an edge, and the wire as polylines, each a chain of edges
+    between points where other than two edges meet (a spline, or its
+    pieces between junctions an edges-only mesh shares), a closed chain
+    ending at its first point. Returns (vertices (V, 3), polylines: lists
+    of indices into them)."""
     points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    if len(points) == 0 or len(edges) == 0:
-        return np.zeros((0, 3)), np.zeros((0, 2), np.int64), 0
-    diagonal = float(np.linalg.norm(points.max(0) - points.min(0)))
-    target = _weld(points, relative_tolerance * diagonal)
-    merged = int((target != np.arange(len(points))).sum())
-    pairs = np.sort(target[edges], axis=1)
-    pairs = np.unique(pairs[pairs[:, 0] != pairs[:, 1]], axis=0)
-    used, local = np.unique(pairs, return_inverse=True)
-    return points[used], local.reshape(-1, 2), merged
+    edges = np.unique(np.sort(edges[edges[:, 0] != edges[:, 1]], axis=1),
+                      axis=0)
+    if len(edges) == 0:
+        return np.zeros((0, 3)), []
+    used, local = np.unique(edges, return_inverse=True)
+    edges = local.reshape(-1, 2)
+    incident = defaultdict(list)  # point: the edges at it
+    for e, (a, b) in enumerate(edges.tolist()):
+        incident[a].append(e)
+        incident[b].append(e)
+    done = np.zeros(len(edges), dtype=bool)
 
+    def walk(start, e):  # from `start` along edge e to a chain's end
+        chain = [start]
+        while not done[e]:
+            done[e] = True
+            a, b = edges[e]
+            chain.append(int(b if a == chain[-1] else a))
+            at = incident[chain[-1]]
+            if len(at) != 2:
+                break
+            e = at[1] if at[0] == e else at[0]
+        return chain
 
-def _weld(points, tolerance):
-    """Per point the first point (in order) within `tolerance` of it, or
-    of a point welded to it: an int64 array, target[i] <= i."""
-    target = np.arange(len(points))
-    if tolerance <= 0:
-        return target
-    tree = KDTree(len(points))
-    for i, p in enumerate(points):
-        tree.insert(p, i)
-    tree.balance()
-    for i, p in enumerate(points):
-        if target[i] != i:
-            continue
-        stack = [p]
-        while stack:  # what lies within the tolerance of the group, too
-            for _, j, _ in tree.find_range(stack.pop(), tolerance):
-                if j > i and target[j] == j:
-                    target[j] = i
-                    stack.append(points[j])
-    return target
+    ends = [p for p in sorted(incident) if len(incident[p]) != 2]
+    polylines = [walk(p, e) for p in ends for e in incident[p] if not done[e]]
+    polylines += [walk(int(edges[e, 0]), e) for e in range(len(edges))
+                  if not done[e]]  # closed chains (cyclic splines)
+    return points[used], polylines

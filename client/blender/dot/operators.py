@@ -1064,11 +1064,12 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
         "on their curves (a partition inside a box). Off: a ring of curves "
         "around a body is only the line between two patches")
     weld_distance: FloatProperty(
-        name="Weld Distance", default=1e-6, min=0.0, max=0.01,
-        precision=6,
-        description="Points closer than this fraction of the curves' "
-        "bounding-box diagonal are one point: spline ends that meet become "
-        "junctions")
+        name="Weld Distance", default=1e-4, min=0.0, soft_max=0.1,
+        precision=4, subtype='DISTANCE', unit='LENGTH',
+        description="A spline's free end is welded to the nearest point "
+        "of another spline within this distance (object space), so "
+        "strokes that nearly meet become junctions; ends that coincide "
+        "always meet")
 
     @classmethod
     def poll(cls, context):
@@ -1097,24 +1098,24 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
             self.report({'ERROR'}, f"DOT: {obj.name} evaluates to faces "
                         "(a modifier makes a surface); remove it first")
             return None
-        vertices, edges, merged = geometry.curve_network(
-            points, edges, self.weld_distance)
-        if len(edges) == 0:
+        vertices, polylines = geometry.curve_network(points, edges)
+        if not polylines:
             self.report({'ERROR'}, f"DOT: {obj.name} has no curves")
             return None
         options = dot_client.SurfaceOptions(
             stage=self.stage.lower(), skip_longest=self.skip_longest,
             islands=self.islands.lower(), walls=self.walls,
+            weld_distance=self.weld_distance,
             weights=None if self.preset == 'DEFAULT' else self.weights("fill"))
 
         def work(client, cancel, progress):
             progress(0.0, "sending the curves")
             return client.surface_network(
-                vertices, edges, options=options, cancel=cancel,
+                vertices, polylines, options=options, cancel=cancel,
                 progress=lambda p: progress(
                     p.patches_done / max(1, p.patches_total),
                     surface_status(p)))
-        return work, {"object": obj.name, "welded": merged}
+        return work, {"object": obj.name}
 
     def finish(self, context, state, result):
         source = bpy.data.objects[state["object"]]
@@ -1148,8 +1149,10 @@ class MESH_OT_dot_surface_curves(DotOperator, WeightProps, bpy.types.Operator):
             notes.append(f"{r.failed} failed")
         if r.dangling:
             notes.append(f"{len(r.dangling)} curves bound no patch")
-        if state["welded"]:
-            notes.append(f"{state['welded']} points welded")
+        if r.merged_vertices:
+            notes.append(f"{r.merged_vertices} points welded")
+        for note in r.notes:  # the summary below is the last: it shows
+            self.report({'INFO'}, f"DOT: {note}")
         self.report({'INFO'}, f"DOT: {r.surfaced} of {len(r.patches)} "
                     f"patches surfaced"
                     + (", closed" if r.closed else "")
