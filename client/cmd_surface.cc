@@ -207,9 +207,15 @@ void SurfaceOne(const SurfaceFlags& f, Context* ctx) {
     const int code = o.status.error_code() == grpc::StatusCode::INVALID_ARGUMENT
                          ? kExitUsage
                          : ExitCodeFor(o.status);
+    // The service numbers as its arrays do; the files count from 1.
+    const char* numbering =
+        code == kExitUsage ? " (numbered from 0: vertex 0 is the file's first "
+                             "point, polyline 0 its first, cycle 0 the "
+                             "cycles file's first line)"
+                           : "";
     report(kOutcomeCallFailed, code,
            std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
-               o.status.error_message(),
+               o.status.error_message() + numbering,
            true);
     return;
   }

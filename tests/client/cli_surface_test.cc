@@ -193,8 +193,10 @@ TEST_F(SurfaceCliTest, BadInputsAreNamed) {
   r = Dotctl(flag_ + "surface " + Path("cube.obj") + " --cycles " +
              Path("cycles.txt") + " -o " + Path("x.ply"));
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("no curve joins vertices 1 and 8"), std::string::npos)
+  // Numbered from 0, as the service numbers (the file's "1 8").
+  EXPECT_NE(r.out.find("no curve joins vertices 0 and 7"), std::string::npos)
       << r.out;
+  EXPECT_NE(r.out.find("numbered from 0"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -481,8 +481,8 @@ Status CyclesFromVertices(
     std::set<int32_t> in_patch;
     for (size_t l = 0; l < patches[p].size(); ++l) {
       const auto& listed = patches[p][l];
-      const std::string where = "cycle " + std::to_string(p + 1) + ", loop " +
-                                std::to_string(l + 1) + ": ";
+      const std::string where =
+          "cycle " + std::to_string(p) + ", loop " + std::to_string(l) + ": ";
       if (listed.empty()) return InvalidArgument(where + "no vertices");
       if (listed.size() > n_vertices) {
         return InvalidArgument(
@@ -492,8 +492,7 @@ Status CyclesFromVertices(
       std::vector<int32_t> ids;
       for (int32_t v : listed) {
         if (v < 0 || v >= inputs || graph.vertex_of_input[v] < 0) {
-          return InvalidArgument(where + "vertex " +
-                                 std::to_string(static_cast<int64_t>(v) + 1) +
+          return InvalidArgument(where + "vertex " + std::to_string(v) +
                                  " is not on a curve of the network");
         }
         ids.push_back(graph.vertex_of_input[v]);
@@ -537,9 +536,9 @@ Status CyclesFromVertices(
             ways.push_back(std::move(way));
           }
         }
-        const std::string pair =
-            "vertices " + std::to_string(listed[k] + 1) + " and " +
-            std::to_string(listed[(k + 1) % ids.size()] + 1);
+        const std::string pair = "vertices " + std::to_string(listed[k]) +
+                                 " and " +
+                                 std::to_string(listed[(k + 1) % ids.size()]);
         if (ways.empty()) {
           release();
           return InvalidArgument(where + "no curve joins " + pair);
@@ -606,8 +605,7 @@ Status CyclesFromVertices(
       cycle.loops.push_back(std::move(loop));
     }
     if (cycle.loops.empty()) {
-      return InvalidArgument("cycle " + std::to_string(p + 1) +
-                             " has no loops");
+      return InvalidArgument("cycle " + std::to_string(p) + " has no loops");
     }
     std::vector<std::pair<int32_t, bool>> uses;
     for (const auto& loop : cycle.loops) {
@@ -616,9 +614,8 @@ Status CyclesFromVertices(
     std::sort(uses.begin(), uses.end());
     const auto [it, added] = earlier.emplace(uses, p);
     if (!added) {
-      return InvalidArgument("cycle " + std::to_string(p + 1) +
-                             " repeats cycle " +
-                             std::to_string(it->second + 1));
+      return InvalidArgument("cycle " + std::to_string(p) + " repeats cycle " +
+                             std::to_string(it->second));
     }
     cycles->push_back(std::move(cycle));
   }
@@ -637,9 +634,9 @@ Status CyclesFromVertices(
       const int32_t a =
           graph.input_of_vertex[r[0].second ? vs.back() : vs.front()];
       return InvalidArgument(
-          "cycles " + std::to_string(r[0].first + 1) + " and " +
-          std::to_string(r[1].first + 1) + " both run the curve from vertex " +
-          std::to_string(a + 1) +
+          "cycles " + std::to_string(r[0].first) + " and " +
+          std::to_string(r[1].first) + " both run the curve from vertex " +
+          std::to_string(a) +
           " the same way; the patches of one surface run a curve they "
           "share once each way (list one of them the other way round)");
     }

@@ -3,7 +3,7 @@
 // are welded by exact coordinates (sketching tools and Blender's curve
 // export repeat a junction's point in every curve through it); what is not
 // a network is refused with the polylines and vertices named (numbered
-// from 1, as files number them).
+// from 0, as the report's curves and patches and every API's arrays).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 
@@ -26,9 +26,9 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 std::string Vertex(int32_t input_id) {
-  return "vertex " + std::to_string(input_id + 1);
+  return "vertex " + std::to_string(input_id);
 }
-std::string Polyline(size_t p) { return "polyline " + std::to_string(p + 1); }
+std::string Polyline(size_t p) { return "polyline " + std::to_string(p); }
 
 struct Edge {
   int32_t a, b;      // graph vertices, in the polyline's direction
@@ -160,8 +160,8 @@ Status Weld(const CurveNetwork& net, double distance, const Control& control,
     for (int32_t v : line) {
       if (v < 0 || static_cast<size_t>(v) >= n) {
         return InvalidArgument(Polyline(p) + " names vertex " +
-                               std::to_string(static_cast<int64_t>(v) + 1) +
-                               ", not one of the " + std::to_string(n));
+                               std::to_string(v) + ", not one of the " +
+                               std::to_string(n));
       }
       used[v] = 1;
     }
@@ -240,8 +240,8 @@ Status CollectEdges(const CurveNetwork& net, double weld_distance,
         return InvalidArgument(
             (o.polyline == e.polyline
                  ? Polyline(p) + " runs twice"
-                 : "polylines " + std::to_string(o.polyline + 1) + " and " +
-                       std::to_string(p + 1) + " both run") +
+                 : "polylines " + std::to_string(o.polyline) + " and " +
+                       std::to_string(p) + " both run") +
             " along the edge between " + Vertex(e.input_a) + " and " +
             Vertex(e.input_b) + " (duplicate curves)");
       }

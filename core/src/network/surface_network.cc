@@ -689,9 +689,8 @@ SurfaceResult Surface(const CurveNetwork& network,
           "path of " +
           std::to_string(w.seam.new_vertices.size()) +
           " vertices between input vertices " +
-          std::to_string(g.input_of_vertex[w.seam.from] + 1) + " and " +
-          std::to_string(g.input_of_vertex[w.seam.to] + 1) +
-          " (numbered from 1)");
+          std::to_string(g.input_of_vertex[w.seam.from]) + " and " +
+          std::to_string(g.input_of_vertex[w.seam.to]));
     }
   }
   std::vector<int> todo;

@@ -633,7 +633,7 @@ TEST(SurfaceNetworkTest, RefusesBadNetworksAndOptions) {
   net.polylines.push_back({0, 99});
   SurfaceResult r = SurfaceNetwork(net);
   EXPECT_EQ(r.status.code, StatusCode::kInvalidArgument);
-  EXPECT_NE(r.status.message.find("vertex 100"), std::string::npos);
+  EXPECT_NE(r.status.message.find("names vertex 99,"), std::string::npos);
   SurfaceOptions o;
   o.density = 0;
   r = SurfaceNetwork(CubeNetwork(2), o);
