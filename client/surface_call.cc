@@ -66,7 +66,8 @@ std::vector<std::string> SurfaceNotes(const v1::SurfaceReport& r) {
   }
   if (r.failed() > 0) {
     notes.push_back(std::to_string(r.failed()) +
-                    " patches left open: see each patch's reason");
+                    (r.failed() == 1 ? " patch" : " patches") +
+                    " left open: see each patch's reason");
   }
   if (r.non_manifold_curves() > 0) {
     notes.push_back(std::to_string(r.non_manifold_curves()) +

@@ -933,11 +933,14 @@ SurfaceResult Surface(const CurveNetwork& network,
             1);
       }
       bool faired = false;
-      why.clear();
+      std::string fair_why;  // empty: every patch pinned (why says why)
       s = FairMesh(&mesh, first_new, fixed, options.fairing_continuity, control,
-                   &faired, &why);
+                   &faired, &fair_why);
       if (!s.ok()) return fail(s);
-      if (!faired) break;
+      if (!faired) {
+        if (!fair_why.empty()) why = fair_why;
+        break;
+      }
       std::set<int32_t> crossing;
       int64_t pairs = 0;
       s = CrossingPatches(mesh, owner, nullptr, control, &crossing, &pairs);
@@ -957,8 +960,8 @@ SurfaceResult Surface(const CurveNetwork& network,
                                 "refinement undone: it crossed unfaired");
         }
       }
-      why =
-          "faces still crossed after " + std::to_string(round + 1) + " rounds";
+      why = "faces still crossed after " + std::to_string(round + 1) +
+            (round == 0 ? " round" : " rounds");
       if (!changed) break;
     }
     if (report.faired_whole) {

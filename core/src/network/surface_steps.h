@@ -61,7 +61,8 @@ Status RefinePatch(const NetworkGraph& graph, const SurfaceOptions& options,
 // added) in one system over the whole mesh, every other vertex fixed, and
 // `fixed` (ids >= first_free) fixed too. Returns kOk with *faired false
 // when the mesh is not a manifold surface or the system could not be
-// solved (`why` says which); a stop (cancel, deadline) as not OK.
+// solved (`why` says which), or with no vertex free to move (`why` left
+// empty); a stop (cancel, deadline) as not OK.
 Status FairMesh(MeshData* mesh, int32_t first_free,
                 const std::vector<char>& fixed, int continuity,
                 const Control& control, bool* faired, std::string* why);

@@ -188,6 +188,26 @@ TEST(SurfaceNetworkTest, CoarsePatchIsRescuedWithItsNeighbours) {
   EXPECT_GE(refaired, 1);
 }
 
+// Bunny in 4 patches faired as a membrane: every patch's whole fairing is
+// undone in turn, so the network is faired patch by patch, and the note
+// says why (it said nothing once every patch was pinned).
+TEST(SurfaceNetworkTest, PatchByPatchFairingSaysWhy) {
+  const CutNetwork cut = testing::CutMesh("bunny00.off", 4, 1, 1);
+  SurfaceOptions o;
+  o.fairing_continuity = 0;
+  const SurfaceResult r = SurfaceNetwork(cut.network, o);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_FALSE(r.report.faired_whole);
+  const std::string lead = "the network was faired patch by patch: ";
+  int said = 0;
+  for (const std::string& note : r.report.notes) {
+    if (note.rfind(lead, 0) != 0) continue;
+    ++said;
+    EXPECT_EQ(note.rfind(lead + "faces still crossed after ", 0), 0u) << note;
+  }
+  EXPECT_EQ(said, 1);
+}
+
 // Two boxes sharing a wall: the wall's four curves border three patches
 // each. Cycles given by the user (the faces' corners).
 TEST(SurfaceNetworkTest, NonManifoldNetworkFoundOrGiven) {
