@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <regex>
 #include <sstream>
 
 #include "cli/inputs.h"
@@ -208,11 +209,18 @@ void SurfaceOne(const SurfaceFlags& f, Context* ctx) {
                          ? kExitUsage
                          : ExitCodeFor(o.status);
     // The service numbers as its arrays do; the files count from 1.
-    const char* numbering =
-        code == kExitUsage ? " (numbered from 0: vertex 0 is the file's first "
-                             "point, polyline 0 its first, cycle 0 the "
-                             "cycles file's first line)"
-                           : "";
+    static const std::regex kNumbered(
+        "\\b(vertex|vertices|polylines?|cycles?) [0-9]");
+    std::string numbering;
+    if (code == kExitUsage &&
+        std::regex_search(o.status.error_message(), kNumbered)) {
+      numbering =
+          " (numbered from 0: vertex 0 is the file's first point, "
+          "polyline 0 its first";
+      numbering += f.cycles_file.empty()
+                       ? ")"
+                       : ", cycle 0 the cycles file's first listed cycle)";
+    }
     report(kOutcomeCallFailed, code,
            std::string(wire::GrpcCodeName(o.status.error_code())) + ": " +
                o.status.error_message() + numbering,

@@ -904,20 +904,58 @@ def test_surface_curves_welds_strokes_that_nearly_meet():
 
 def test_surface_curves_of_an_edges_only_mesh_shares_its_junctions():
     clear_scene()
-    # The cube's 12 edges as a wire mesh whose corners are shared: one
-    # polyline per edge between corners, nothing to weld.
-    edges = [(a, b) for a in range(8) for b in range(a + 1, 8)
-             if sum(abs(p - q) for p, q in
-                    zip(CUBE_CORNERS[a], CUBE_CORNERS[b])) == 1]
-    mesh_object("wire_cube", CUBE_CORNERS, edges=edges)
+    # The cube's 12 edges as a wire mesh whose corners are shared, each
+    # edge in 10 pieces: one polyline per edge between corners. Its ends
+    # meet already, so a Weld Distance wider than the pieces welds nothing.
+    vertices, edges = list(CUBE_CORNERS), []
+    for a in range(8):
+        for b in range(a + 1, 8):
+            p, q = CUBE_CORNERS[a], CUBE_CORNERS[b]
+            if sum(abs(x - y) for x, y in zip(p, q)) != 1:
+                continue
+            chain = [a]
+            for i in range(1, 10):
+                chain.append(len(vertices))
+                vertices.append(tuple(x + i / 10 * (y - x)
+                                      for x, y in zip(p, q)))
+            chain.append(b)
+            edges += zip(chain, chain[1:])
+    mesh_object("wire_cube", vertices, edges=edges)
     with Recording("surface_network") as rec:
-        assert bpy.ops.mesh.dot_surface_curves(stage='TRIANGULATE') \
-            == {'FINISHED'}
+        assert bpy.ops.mesh.dot_surface_curves(
+            stage='TRIANGULATE', weld_distance=0.25) == {'FINISHED'}
     (args, kwargs, answer), = rec.calls
-    assert len(args[0]) == 8 and len(args[1]) == 12
+    assert len(args[0]) == 8 + 12 * 9 and len(args[1]) == 12
+    assert sorted(len(line) for line in args[1]) == [11] * 12
     assert answer.report.merged_vertices == 0
     assert answer.report.closed and answer.report.surfaced == 6
     check_mesh(bpy.context.active_object, boundary_edges=0)
+
+
+def test_surface_curves_leaves_out_segments_of_zero_length():
+    clear_scene()
+    # A cyclic square whose last point repeats its first, and a point
+    # drawn twice on a side: edges of zero length, left out (the server
+    # welds their ends), even with Weld Distance 0.
+    data = bpy.data.curves.new("square", 'CURVE')
+    data.dimensions = '3D'
+    spline = data.splines.new('POLY')
+    corners = [(0, 0, 0), (1, 0, 0), (1, 0.5, 0), (1, 0.5, 0), (1, 1, 0),
+               (0, 1, 0), (0, 0, 0)]
+    spline.points.add(len(corners) - 1)
+    for point, co in zip(spline.points, corners):
+        point.co = (*co, 1)
+    spline.use_cyclic_u = True
+    obj = bpy.data.objects.new("square", data)
+    bpy.context.scene.collection.objects.link(obj)
+    activate(obj)
+    with Recording("surface_network") as rec:
+        assert bpy.ops.mesh.dot_surface_curves(
+            stage='TRIANGULATE', weld_distance=0) == {'FINISHED'}
+    (args, kwargs, answer), = rec.calls
+    assert answer.report.merged_vertices == 2
+    assert answer.report.surfaced == 1
+    check_mesh(bpy.context.active_object, boundary_edges=5)
 
 
 def test_surface_curves_circle_on_a_lid_is_an_island_or_a_hole():

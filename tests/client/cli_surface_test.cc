@@ -197,6 +197,27 @@ TEST_F(SurfaceCliTest, BadInputsAreNamed) {
   EXPECT_NE(r.out.find("no curve joins vertices 0 and 7"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("numbered from 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cycle 0 the cycles file's first listed cycle"),
+            std::string::npos)
+      << r.out;
+  // Curves that cross are named by number, the hint without cycles; an
+  // error that numbers nothing gets no hint.
+  {
+    std::ofstream cross(Path("cross.obj"));
+    cross << "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 3 4\n";
+  }
+  r = Dotctl(flag_ + "surface " + Path("cross.obj") + " -o " + Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("of polyline 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("polyline 0 its first)"), std::string::npos) << r.out;
+  {
+    std::ofstream open(Path("open.obj"));
+    open << "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n";
+  }
+  r = Dotctl(flag_ + "surface " + Path("open.obj") + " -o " + Path("x.ply"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("bounds no patch"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("numbered from 0"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -408,12 +408,15 @@ def curve_network(points, edges):
     points on an edge, and the wire as polylines, each a chain of edges
     between points where other than two edges meet (a spline, or its
     pieces between junctions an edges-only mesh shares), a closed chain
-    ending at its first point. Returns (vertices (V, 3), polylines: lists
+    ending at its first point, in the order of their first points (spline
+    k is polyline k). An edge between two points at the same place (a
+    cyclic spline's repeated point, a zero-length segment) is left out:
+    the server welds its ends. Returns (vertices (V, 3), polylines: lists
     of indices into them)."""
     points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    edges = np.unique(np.sort(edges[edges[:, 0] != edges[:, 1]], axis=1),
-                      axis=0)
+    apart = np.any(points[edges[:, 0]] != points[edges[:, 1]], axis=1)
+    edges = np.unique(np.sort(edges[apart], axis=1), axis=0)
     if len(edges) == 0:
         return np.zeros((0, 3)), []
     used, local = np.unique(edges, return_inverse=True)
@@ -440,4 +443,5 @@ def curve_network(points, edges):
     polylines = [walk(p, e) for p in ends for e in incident[p] if not done[e]]
     polylines += [walk(int(edges[e, 0]), e) for e in range(len(edges))
                   if not done[e]]  # closed chains (cyclic splines)
+    polylines.sort(key=min)
     return points[used], polylines

@@ -864,7 +864,7 @@ class Client:
         or a (P, k) array ((E, 2): one polyline per edge, as Blender's mesh
         edges). Curves meet where they share a vertex id or exactly the
         same coordinates (the server welds those; with ``weld_distance``
-        also points that close); where other than two
+        also a stroke's free end to the nearest point that close); where other than two
         curve pieces meet is a junction. ``normals``: optional (V, 3)
         surface normals at the vertices (sent as the channel
         ``"normal"``), for the ``normal_deviation`` metric.

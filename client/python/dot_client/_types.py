@@ -538,7 +538,8 @@ class SurfaceReport(_Plain):
     The network as a graph: ``curves`` (a vertex id array per curve, ids as
     sent, from one junction to the next; a closed curve's first id is also
     its last), ``junctions``, ``merged_vertices`` (points welded to an
-    earlier copy at exactly the same coordinates), ``dangling`` (ids of
+    earlier one: a copy at the same coordinates, or a stroke end within
+    ``weld_distance``), ``dangling`` (ids of
     curves that bound no patch). ``patches``: a :class:`PatchReport` per
     cycle; ``surfaced`` and ``failed`` count them. ``closed``: every curve
     that is not dangling borders two surfaced patches or more (more: the
@@ -1068,9 +1069,9 @@ class SurfaceOptions(_Options):
     find walls, flat cycles that make a third patch on their curves (a
     partition inside a box; default False: a ring of curves around a body
     is only the line between two patches). ``weld_distance``: each free
-    end of a polyline is welded to the nearest point within this distance
-    (the network's units) not on its own polyline, so that strokes whose
-    ends nearly meet become junctions (default 0: only points at exactly
+    end (an end no other polyline meets) is welded to the nearest point
+    within this distance (the network's units) not on its own stroke, so
+    that strokes whose ends nearly meet become junctions (default 0: only points at exactly
     the same place).
     ``time_budget_ms``, ``memory_budget_bytes``: lower the server's limits
     (0: the server's).

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 
@@ -47,12 +48,14 @@ std::string Number(double x) {
 constexpr int64_t kMaxWeldChecks = 200'000'000;
 
 // Per used point, the first point of its group: points at equal
-// coordinates, and with `distance` > 0 a polyline's free end (a stroke's
-// end, as a sketch leaves it short of or past where it meets another) and
-// the nearest point within `distance` of it not on its own polyline (or
-// its other end: a stroke drawn closed), transitively. Points inside a
-// stroke never weld to each other, so a stroke sampled finer than the
-// distance keeps its shape. Found through a grid of cells `distance` wide.
+// coordinates, and with `distance` > 0 a free end (a stroke's end, as a
+// sketch leaves it short of or past where it meets another: a place with
+// one edge) and the nearest point within `distance` of it not on its own
+// stroke (the polylines it runs on through places of two edges; or the
+// stroke's other end: a stroke drawn closed), transitively. Points inside
+// a stroke never weld to each other, so a stroke sampled finer than the
+// distance keeps its shape, also given one polyline per edge. Found
+// through a grid of cells `distance` wide.
 Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
                   double distance, const Control& control,
                   std::vector<int32_t>* first) {
@@ -89,15 +92,52 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
       }
       grid[cell_of(p)].push_back(static_cast<int32_t>(i));
     }
+    // The network's edges between places (points at equal coordinates), as
+    // adjacency lists: an end whose place has other edges (a junction shared
+    // by index or by coordinates, an end on another polyline) already meets
+    // and is not free; a free end's stroke runs on through places of two
+    // edges (a stroke drawn in pieces, or as OBJ's one 'l a b' per edge).
+    std::vector<int32_t> place(n, -1), start(n + 1, 0), next;
+    for (size_t i = 0; i < n; ++i) {
+      if (used[i]) place[i] = groups.Find(static_cast<int32_t>(i));
+    }
+    for (const auto& line : net.polylines) {
+      for (size_t k = 0; k + 1 < line.size(); ++k) {
+        ++start[place[line[k]] + 1];
+        ++start[place[line[k + 1]] + 1];
+      }
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    next.resize(start[n]);
+    std::vector<int32_t> fill(start.begin(), start.end() - 1);
+    for (const auto& line : net.polylines) {
+      for (size_t k = 0; k + 1 < line.size(); ++k) {
+        const int32_t a = place[line[k]], b = place[line[k + 1]];
+        next[fill[a]++] = b;
+        next[fill[b]++] = a;
+      }
+    }
+    auto degree = [&](int32_t at) { return start[at + 1] - start[at]; };
     RunTicker ticker(control, "the network's weld");
     int64_t checks = 0;
-    for (size_t l = 0; l < net.polylines.size(); ++l) {
-      const auto& line = net.polylines[l];
-      if (line.front() == line.back()) continue;  // closed: no free end
-      std::vector<int32_t> own(line.begin(), line.end());
-      std::sort(own.begin(), own.end());
+    std::vector<int32_t> own;  // the places of a free end's stroke, sorted
+    for (const auto& line : net.polylines) {
       for (const int32_t end : {line.front(), line.back()}) {
-        const int32_t other = end == line.front() ? line.back() : line.front();
+        if (degree(place[end]) != 1) continue;
+        // Its stroke: from its place on through places of two edges.
+        own = {place[end]};
+        int32_t at = next[start[place[end]]], from = place[end];
+        while (at != place[end] && own.size() <= n) {
+          own.push_back(at);
+          if (degree(at) != 2) break;
+          const int32_t to =
+              next[start[at]] == from ? next[start[at] + 1] : next[start[at]];
+          from = at;
+          at = to;
+        }
+        const int32_t other = own.back();  // its far end
+        const bool may_close = own.size() >= 4;
+        std::sort(own.begin(), own.end());
         const Cell c = cell_of(points[end]);
         // The nearest point it may weld to (the first of equals).
         double best = distance;
@@ -116,8 +156,9 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
                       " pairs of points side by side: give one nearer the "
                       "gaps between stroke ends");
                 }
-                const bool closes = q == other && line.size() >= 4;
-                if (!closes && std::binary_search(own.begin(), own.end(), q)) {
+                const bool closes = place[q] == other && may_close;
+                if (!closes &&
+                    std::binary_search(own.begin(), own.end(), place[q])) {
                   continue;
                 }
                 const double d = Distance(points[end], points[q]);

@@ -29,6 +29,7 @@ Status FairMesh(MeshData* mesh, int32_t first_free,
                 const std::vector<char>& fixed, int continuity,
                 const Control& control, bool* faired, std::string* why) {
   *faired = false;
+  why->clear();
   RunTicker ticker(control, "fairing");
   if (!ticker.Poll()) return ticker.status();
   Vec3 lo = mesh->vertices.empty() ? Vec3{} : mesh->vertices[0], hi = lo;

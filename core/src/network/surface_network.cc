@@ -690,7 +690,7 @@ SurfaceResult Surface(const CurveNetwork& network,
           std::to_string(w.seam.new_vertices.size()) +
           " vertices between input vertices " +
           std::to_string(g.input_of_vertex[w.seam.from]) + " and " +
-          std::to_string(g.input_of_vertex[w.seam.to]));
+          std::to_string(g.input_of_vertex[w.seam.to]) + " (numbered from 0)");
     }
   }
   std::vector<int> todo;
@@ -830,9 +830,10 @@ SurfaceResult Surface(const CurveNetwork& network,
     std::vector<int> again;
     std::map<int, Work> before;
     for (auto& [p, chords] : more) {
-      const std::string failure = "its surface " + why[p] + " after " +
-                                  std::to_string(report.patches[p].resolves) +
-                                  " re-solves";
+      const std::string failure =
+          "its surface " + why[p] + " after " +
+          std::to_string(report.patches[p].resolves) +
+          (report.patches[p].resolves == 1 ? " re-solve" : " re-solves");
       if (round >= kResolveRounds || chords.empty() || fanned[p]) {
         if (!fanned[p]) {
           fan(p, failure);

@@ -171,12 +171,14 @@ TEST(NetworkGraphTest, WeldsStrokeEndsWithinTheWeldDistance) {
 }
 
 TEST(NetworkGraphTest, WeldDropsEdgesItShrinksToAPointAndRefusesBadDistances) {
-  // A triangle drawn with a stroke that overshoots its first corner by
-  // 0.001, onto its first edge (a touch, refused), and a 0.001 stub back:
-  // welded, the stub is gone and the triangle closes at its first point.
+  // A triangle drawn as one stroke that overshoots its first corner by
+  // 0.001, onto its first edge (a touch, refused), and a stroke 0.002 long
+  // beside its second corner. Welded, the triangle closes at its first
+  // point and the short stroke shrinks into the corner: its edge is gone.
   NetworkGraph g;
   std::istringstream in(
-      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.001 0 0\nl 1 2 3 4\nl 4 1\n");
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.001 0 0\nv 1.001 0.001 0\n"
+      "v 1.002 0 0.001\nl 1 2 3 4\nl 5 6\n");
   CurveNetwork net;
   ASSERT_TRUE(ReadNetworkObj(in, &net).ok());
   const Status touch = BuildNetworkGraph(net, &g);
@@ -185,7 +187,7 @@ TEST(NetworkGraphTest, WeldDropsEdgesItShrinksToAPointAndRefusesBadDistances) {
   ASSERT_EQ(g.curves.size(), 1u);
   EXPECT_TRUE(g.curves[0].closed());
   EXPECT_EQ(g.curves[0].vertices.size(), 4u);  // 0, 1, 2 and 0 again
-  EXPECT_EQ(g.welded_edges, 1);                // the stub
+  EXPECT_EQ(g.welded_edges, 1);                // the short stroke
   for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
     const Status s = BuildNetworkGraph(net, &g, {}, bad);
     EXPECT_EQ(s.code, StatusCode::kInvalidArgument);
@@ -236,6 +238,46 @@ TEST(NetworkGraphTest, WeldJoinsStrokeEndsOnlyAndTransitively) {
     EXPECT_EQ(g.input_of_vertex[g.vertex_of_input[k]], k);
   }
   // Curves: the fine stroke split at the T (two), the T, the chain's two.
+  EXPECT_EQ(g.curves.size(), 5u);
+}
+
+// Ends that already meet are not free: polylines of one edge each (OBJ's
+// 'l a b', a wire mesh's chains) share every inner point, and a junction
+// shared by index or by coordinates joins its curves. Only the one end
+// no other polyline lists is welded.
+TEST(NetworkGraphTest, WeldLeavesEndsThatAlreadyMeet) {
+  CurveNetwork net;
+  for (int k = 0; k <= 10; ++k) net.vertices.push_back({0.001 * k, 0, 0});
+  for (int k = 0; k < 10; ++k) net.polylines.push_back({k, k + 1});
+  // A star at vertex 10: two more strokes from it, one by index and one
+  // from a copy of its point, each sampled every 0.001.
+  auto stroke = [&](Vec3 from, Vec3 step, bool copy_first) {
+    std::vector<int32_t> ids;
+    if (!copy_first) ids.push_back(10);
+    for (int k = copy_first ? 0 : 1; k <= 10; ++k) {
+      ids.push_back(static_cast<int32_t>(net.vertices.size()));
+      net.vertices.push_back(from + static_cast<double>(k) * step);
+    }
+    net.polylines.push_back(ids);
+  };
+  stroke({0.01, 0, 0}, {0, 0.001, 0}, false);  // 11 .. 20
+  stroke({0.01, 0, 0}, {0, -0.001, 0}, true);  // 21 (at vertex 10) .. 31
+  // A stroke whose end (32) stops 0.003 short of vertex 5.
+  net.vertices.push_back({0.005, 0.003, 0});
+  net.vertices.push_back({0.005, 1, 0});
+  net.polylines.push_back({32, 33});
+  NetworkGraph g;
+  const Status s = BuildNetworkGraph(net, &g, {}, 0.005);
+  ASSERT_TRUE(s.ok()) << s.message;
+  EXPECT_EQ(g.welded_edges, 0);
+  EXPECT_EQ(g.merged_vertices, 2);  // the copy of vertex 10, and 32
+  EXPECT_EQ(g.vertex_of_input[21], g.vertex_of_input[10]);
+  EXPECT_EQ(g.vertex_of_input[32], g.vertex_of_input[5]);
+  for (int v = 0; v <= 31; ++v) {
+    if (v == 21) continue;
+    EXPECT_EQ(g.input_of_vertex[g.vertex_of_input[v]], v) << v;
+  }
+  // The line split at the T (two), the star's two strokes, the T.
   EXPECT_EQ(g.curves.size(), 5u);
 }
 
