@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -62,14 +63,25 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
   const std::vector<Vec3>& points = net.vertices;
   const size_t n = points.size();
   UnionFind groups(n);
-  std::map<std::tuple<double, double, double>, int32_t> by_point;
+  RunTicker ticker(control, "the network's weld");
+  // Points at equal coordinates (-0 == 0 as doubles compare), found by
+  // sorting: a map of a million points took half a second, unpolled.
+  auto coordinates = [&](int32_t i) {
+    return std::make_tuple(points[i].x, points[i].y, points[i].z);
+  };
+  std::vector<int32_t> order;
   for (size_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
-    const Vec3& p = points[i];
-    const auto key = std::make_tuple(p.x == 0 ? 0.0 : p.x, p.y == 0 ? 0.0 : p.y,
-                                     p.z == 0 ? 0.0 : p.z);  // -0 == 0
-    const auto [it, added] = by_point.emplace(key, static_cast<int32_t>(i));
-    if (!added) groups.Join(static_cast<int32_t>(i), it->second);
+    if (used[i]) order.push_back(static_cast<int32_t>(i));
+  }
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return std::make_pair(coordinates(a), a) <
+           std::make_pair(coordinates(b), b);
+  });
+  for (size_t k = 1; k < order.size(); ++k) {
+    if (!ticker.Tick()) return ticker.status();
+    if (coordinates(order[k]) == coordinates(order[k - 1])) {
+      groups.Join(order[k], order[k - 1]);
+    }
   }
   if (distance > 0) {
     using Cell = std::array<int64_t, 3>;
@@ -78,20 +90,25 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
                   static_cast<int64_t>(std::floor(p.y / distance)),
                   static_cast<int64_t>(std::floor(p.z / distance))};
     };
-    std::map<Cell, std::vector<int32_t>> grid;
-    for (size_t i = 0; i < n; ++i) {
+    // The used points by cell, sorted (a lookup is a binary search).
+    std::vector<std::pair<Cell, int32_t>> grid;
+    grid.reserve(order.size());
+    for (int32_t i = 0; i < static_cast<int32_t>(n); ++i) {
       if (!used[i]) continue;
+      if (!ticker.Tick()) return ticker.status();
       const Vec3& p = points[i];
       // Cells are indexed by 64-bit integers: at most 1e15 cells across.
       if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) / distance >
           1e15) {
         return InvalidArgument(
             "the weld distance " + Number(distance) + " is too small for " +
-            Vertex(static_cast<int32_t>(i)) +
+            Vertex(i) +
             "'s coordinates (at most 1e15 times smaller than them)");
       }
-      grid[cell_of(p)].push_back(static_cast<int32_t>(i));
+      grid.emplace_back(cell_of(p), i);
     }
+    std::sort(grid.begin(), grid.end());
+    if (!ticker.Poll()) return ticker.status();
     // The network's edges between places (points at equal coordinates), as
     // adjacency lists: an end whose place has other edges (a junction shared
     // by index or by coordinates, an end on another polyline) already meets
@@ -118,7 +135,6 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
       }
     }
     auto degree = [&](int32_t at) { return start[at + 1] - start[at]; };
-    RunTicker ticker(control, "the network's weld");
     int64_t checks = 0;
     std::vector<int32_t> own;  // the places of a free end's stroke, sorted
     for (const auto& line : net.polylines) {
@@ -145,9 +161,13 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
         for (int64_t dx = -1; dx <= 1; ++dx) {
           for (int64_t dy = -1; dy <= 1; ++dy) {
             for (int64_t dz = -1; dz <= 1; ++dz) {
-              const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
-              if (it == grid.end()) continue;
-              for (const int32_t q : it->second) {
+              const Cell cell = {c[0] + dx, c[1] + dy, c[2] + dz};
+              for (auto it = std::lower_bound(
+                       grid.begin(), grid.end(),
+                       std::make_pair(cell,
+                                      std::numeric_limits<int32_t>::min()));
+                   it != grid.end() && it->first == cell; ++it) {
+                const int32_t q = it->second;
                 if (!ticker.Tick()) return ticker.status();
                 if (++checks > kMaxWeldChecks) {
                   return InvalidArgument(
@@ -253,12 +273,15 @@ Status Weld(const CurveNetwork& net, double distance, const Control& control,
 }
 
 Status CollectEdges(const CurveNetwork& net, double weld_distance,
-                    NetworkGraph* graph, std::vector<Edge>* edges) {
+                    const Control& control, NetworkGraph* graph,
+                    std::vector<Edge>* edges) {
   const NetworkGraph& g = *graph;
+  RunTicker ticker(control, "the network's edges");
   std::unordered_map<uint64_t, int32_t> seen;  // undirected key -> edge
   for (size_t p = 0; p < net.polylines.size(); ++p) {
     const auto& line = net.polylines[p];
     for (size_t k = 0; k + 1 < line.size(); ++k) {
+      if (!ticker.Tick()) return ticker.status();
       const Edge e{g.vertex_of_input[line[k]], g.vertex_of_input[line[k + 1]],
                    static_cast<int32_t>(p), line[k], line[k + 1]};
       // An edge whose ends were welded together is gone.
@@ -469,7 +492,7 @@ Status BuildNetworkGraph(const CurveNetwork& network, NetworkGraph* out,
   s = Weld(network, weld_distance, control, out);
   if (!s.ok()) return s;
   std::vector<Edge> edges;
-  s = CollectEdges(network, weld_distance, out, &edges);
+  s = CollectEdges(network, weld_distance, control, out, &edges);
   if (!s.ok()) return s;
   s = CheckCrossings(*out, edges, control);
   if (!s.ok()) return s;

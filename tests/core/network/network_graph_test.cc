@@ -3,6 +3,8 @@
 // welding, dangling curves, and refusals that name what is wrong.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -279,6 +281,39 @@ TEST(NetworkGraphTest, WeldLeavesEndsThatAlreadyMeet) {
   }
   // The line split at the T (two), the star's two strokes, the T.
   EXPECT_EQ(g.curves.size(), 5u);
+}
+
+// A large network stops at a cancel or a passed deadline: the weld, the
+// edges and the crossing check poll them (a million points took seconds
+// past a client's deadline when only the crossing check did).
+TEST(NetworkGraphTest, StopsWhenCancelledOrPastItsDeadline) {
+  CurveNetwork net;
+  constexpr int kPoints = 200000;
+  for (int k = 0; k < kPoints; ++k) {
+    const double t = 0.001 * k;
+    net.vertices.push_back({std::cos(t), std::sin(t), 1e-5 * k});
+  }
+  for (int k = 0; k + 1 < kPoints; ++k) net.polylines.push_back({k, k + 1});
+  NetworkGraph g;
+  for (double weld : {0.0, 1e-4}) {
+    SCOPED_TRACE(weld);
+    std::atomic<bool> cancel{true};
+    Control cancelled;
+    cancelled.cancel = &cancel;
+    EXPECT_EQ(BuildNetworkGraph(net, &g, cancelled, weld).code,
+              StatusCode::kCancelled);
+    Control expired;
+    expired.deadline = std::chrono::steady_clock::now();
+    const Status late = BuildNetworkGraph(net, &g, expired, weld);
+    EXPECT_EQ(late.code, StatusCode::kDeadlineExceeded);
+    // At the first step, not at the last.
+    EXPECT_NE(late.message.find("weld"), std::string::npos) << late.message;
+    // Unstopped, it is one open curve (nothing to weld: every end but two
+    // is shared).
+    ASSERT_TRUE(BuildNetworkGraph(net, &g, {}, weld).ok());
+    EXPECT_EQ(g.merged_vertices, 0);
+    EXPECT_EQ(g.curves.size(), 1u);
+  }
 }
 
 }  // namespace
