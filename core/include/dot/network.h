@@ -96,10 +96,12 @@ struct NetworkGraph {
 // than 2 points, an edge from a point to itself, two polylines along one edge
 // (duplicate curves), or two curves that cross or touch away from a shared
 // vertex (exact predicates). Points are welded where their coordinates are
-// equal, and with `weld_distance` > 0 a free end (an end no other polyline
-// meets) with the nearest point within that distance of it not on its own
-// stroke (the polylines it runs on through points of two edges; or the
-// stroke's other end: drawn closed), transitively: strokes whose ends fall
+// equal, and with `weld_distance` > 0 a free end (a point with one edge;
+// repeated points make none) with the nearest point within that distance
+// of it not on its own stroke (the polylines it runs on through points of
+// two edges; or the stroke's other end: drawn closed) nor beside the
+// junction it starts from, transitively (a stub from a junction within the
+// distance stays, dangling): strokes whose ends fall
 // short of or past another stroke meet it there, and a stroke's inner
 // points never weld to each other. Each group is welded into its first point;
 // an edge whose ends are welded together is dropped (welded_edges). A distance

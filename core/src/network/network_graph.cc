@@ -53,7 +53,8 @@ constexpr int64_t kMaxWeldChecks = 200'000'000;
 // sketch leaves it short of or past where it meets another: a place with
 // one edge) and the nearest point within `distance` of it not on its own
 // stroke (the polylines it runs on through places of two edges; or the
-// stroke's other end: a stroke drawn closed), transitively. Points inside
+// stroke's other end: a stroke drawn closed) nor beside the junction the
+// stroke starts from, transitively. Points inside
 // a stroke never weld to each other, so a stroke sampled finer than the
 // distance keeps its shape, also given one polyline per edge. Found
 // through a grid of cells `distance` wide.
@@ -73,6 +74,7 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
   for (size_t i = 0; i < n; ++i) {
     if (used[i]) order.push_back(static_cast<int32_t>(i));
   }
+  if (!ticker.Poll()) return ticker.status();
   std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
     return std::make_pair(coordinates(a), a) <
            std::make_pair(coordinates(b), b);
@@ -93,9 +95,10 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
     // The used points by cell, sorted (a lookup is a binary search).
     std::vector<std::pair<Cell, int32_t>> grid;
     grid.reserve(order.size());
-    for (int32_t i = 0; i < static_cast<int32_t>(n); ++i) {
-      if (!used[i]) continue;
+    for (size_t k = 0; k < n; ++k) {  // in input order: names the first
+      if (!used[k]) continue;
       if (!ticker.Tick()) return ticker.status();
+      const auto i = static_cast<int32_t>(k);
       const Vec3& p = points[i];
       // Cells are indexed by 64-bit integers: at most 1e15 cells across.
       if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) / distance >
@@ -107,6 +110,7 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
       }
       grid.emplace_back(cell_of(p), i);
     }
+    if (!ticker.Poll()) return ticker.status();
     std::sort(grid.begin(), grid.end());
     if (!ticker.Poll()) return ticker.status();
     // The network's edges between places (points at equal coordinates), as
@@ -114,22 +118,27 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
     // by index or by coordinates, an end on another polyline) already meets
     // and is not free; a free end's stroke runs on through places of two
     // edges (a stroke drawn in pieces, or as OBJ's one 'l a b' per edge).
-    std::vector<int32_t> place(n, -1), start(n + 1, 0), next;
-    for (size_t i = 0; i < n; ++i) {
-      if (used[i]) place[i] = groups.Find(static_cast<int32_t>(i));
-    }
+    // An edge of zero length (a point repeated) is no edge here.
+    std::vector<int32_t> place(n, -1), next;
+    std::vector<int64_t> start(n + 1, 0);
+    for (const int32_t i : order) place[i] = groups.Find(i);
     for (const auto& line : net.polylines) {
       for (size_t k = 0; k + 1 < line.size(); ++k) {
-        ++start[place[line[k]] + 1];
-        ++start[place[line[k + 1]] + 1];
+        if (!ticker.Tick()) return ticker.status();
+        const int32_t a = place[line[k]], b = place[line[k + 1]];
+        if (a == b) continue;
+        ++start[a + 1];
+        ++start[b + 1];
       }
     }
     std::partial_sum(start.begin(), start.end(), start.begin());
-    next.resize(start[n]);
-    std::vector<int32_t> fill(start.begin(), start.end() - 1);
+    next.resize(static_cast<size_t>(start[n]));
+    std::vector<int64_t> fill(start.begin(), start.end() - 1);
     for (const auto& line : net.polylines) {
       for (size_t k = 0; k + 1 < line.size(); ++k) {
+        if (!ticker.Tick()) return ticker.status();
         const int32_t a = place[line[k]], b = place[line[k + 1]];
+        if (a == b) continue;
         next[fill[a]++] = b;
         next[fill[b]++] = a;
       }
@@ -144,6 +153,7 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
         own = {place[end]};
         int32_t at = next[start[place[end]]], from = place[end];
         while (at != place[end] && own.size() <= n) {
+          if (!ticker.Tick()) return ticker.status();
           own.push_back(at);
           if (degree(at) != 2) break;
           const int32_t to =
@@ -152,7 +162,18 @@ Status WeldGroups(const CurveNetwork& net, const std::vector<char>& used,
           at = to;
         }
         const int32_t other = own.back();  // its far end
+        // A stub from a junction within the distance (an overshoot) stays
+        // dangling: welded, it would close a loop beside the junction.
+        if (degree(other) >= 3 &&
+            Distance(points[end], points[other]) <= distance) {
+          continue;
+        }
         const bool may_close = own.size() >= 4;
+        // Where its next place is a junction, that junction's neighbours
+        // too: welded to one, its edge would run along theirs.
+        for (int64_t k = start[own[1]]; k < start[own[1] + 1]; ++k) {
+          own.push_back(next[k]);
+        }
         std::sort(own.begin(), own.end());
         const Cell c = cell_of(points[end]);
         // The nearest point it may weld to (the first of equals).

@@ -283,6 +283,64 @@ TEST(NetworkGraphTest, WeldLeavesEndsThatAlreadyMeet) {
   EXPECT_EQ(g.curves.size(), 5u);
 }
 
+// A repeated point (an edge of zero length) is no edge to the weld: a T's
+// foot whose last point is drawn twice is still a free end, and a stroke
+// with a point drawn twice still keeps its points apart.
+TEST(NetworkGraphTest, WeldIgnoresRepeatedPoints) {
+  NetworkGraph g;
+  std::istringstream t(
+      "v 0 0 0\nv .5 0 0\nv 1 0 0\nv .5 .0005 0\nv .5 .0005 0\n"
+      "v .5 1 0\nl 1 2 3\nl 4 5 6\n");
+  CurveNetwork net;
+  ASSERT_TRUE(ReadNetworkObj(t, &net).ok());
+  Status s = BuildNetworkGraph(net, &g, {}, 0.001);
+  ASSERT_TRUE(s.ok()) << s.message;
+  EXPECT_EQ(g.vertex_of_input[3], g.vertex_of_input[1]);  // the T's foot
+  EXPECT_EQ(g.vertex_of_input[4], g.vertex_of_input[1]);
+  EXPECT_EQ(g.welded_edges, 1);  // the repeated point's edge
+  EXPECT_EQ(g.curves.size(), 3u);
+  std::istringstream line(
+      "v 0 0 0\nv .0004 0 0\nv .0004 0 0\nv .0008 0 0\nv 1 0 0\n"
+      "l 1 2 3 4 5\n");
+  ASSERT_TRUE(ReadNetworkObj(line, &net).ok());
+  s = BuildNetworkGraph(net, &g, {}, 0.001);
+  ASSERT_TRUE(s.ok()) << s.message;
+  EXPECT_EQ(g.merged_vertices, 1);  // the copy only
+  EXPECT_EQ(g.welded_edges, 1);
+  ASSERT_EQ(g.curves.size(), 1u);
+  EXPECT_EQ(g.curves[0].vertices.size(), 4u);
+}
+
+// A free end next to a junction: welded to the junction's neighbour its
+// edge would double theirs, and welded near it, it would close a small
+// loop. A stroke that curls through its second point, and one that
+// overshoots an exact junction by 0.001, are left as drawn (the overshoot
+// dangles).
+TEST(NetworkGraphTest, WeldLeavesStubsBesideTheirJunction) {
+  NetworkGraph g;
+  std::istringstream curl(
+      "v 0 0 0\nv .001 0 0\nv .002 .001 0\nv .001 .002 0\nv 1 0 0\n"
+      "l 1 2 3 4 2 5\n");
+  CurveNetwork net;
+  ASSERT_TRUE(ReadNetworkObj(curl, &net).ok());
+  Status s = BuildNetworkGraph(net, &g, {}, 0.01);
+  ASSERT_TRUE(s.ok()) << s.message;
+  EXPECT_EQ(g.merged_vertices, 0);
+  net = {};
+  for (int k = -3; k <= 3; ++k) net.vertices.push_back({0.001 * k, 0, 0});
+  net.polylines.push_back({0, 1, 2, 3, 4, 5, 6});  // through (0, 0, 0): 3
+  net.vertices.push_back({0, -1, 0});              // 7
+  net.vertices.push_back({0, 0, 0});               // 8, a copy of 3
+  net.vertices.push_back({0, 0.001, 0});           // 9, past it
+  net.polylines.push_back({7, 8, 9});
+  s = BuildNetworkGraph(net, &g, {}, 0.005);
+  ASSERT_TRUE(s.ok()) << s.message;
+  EXPECT_EQ(g.merged_vertices, 1);  // the copy only
+  for (int v : {0, 1, 2, 4, 5, 6, 9}) {
+    EXPECT_EQ(g.input_of_vertex[g.vertex_of_input[v]], v) << v;
+  }
+}
+
 // A large network stops at a cancel or a passed deadline: the weld, the
 // edges and the crossing check poll them (a million points took seconds
 // past a client's deadline when only the crossing check did).
