@@ -16,12 +16,12 @@
 namespace dot {
 namespace {
 
-Status Build(const std::string& obj, NetworkGraph* g) {
+Status Build(const std::string& obj, NetworkGraph* g, double weld = 0) {
   std::istringstream in(obj);
   CurveNetwork net;
   const Status s = ReadNetworkObj(in, &net);
   if (!s.ok()) return s;
-  return BuildNetworkGraph(net, g);
+  return BuildNetworkGraph(net, g, {}, weld);
 }
 
 TEST(NetworkIoTest, ReadsObjPolylinesAndEdges) {
@@ -288,22 +288,19 @@ TEST(NetworkGraphTest, WeldLeavesEndsThatAlreadyMeet) {
 // with a point drawn twice still keeps its points apart.
 TEST(NetworkGraphTest, WeldIgnoresRepeatedPoints) {
   NetworkGraph g;
-  std::istringstream t(
+  Status s = Build(
       "v 0 0 0\nv .5 0 0\nv 1 0 0\nv .5 .0005 0\nv .5 .0005 0\n"
-      "v .5 1 0\nl 1 2 3\nl 4 5 6\n");
-  CurveNetwork net;
-  ASSERT_TRUE(ReadNetworkObj(t, &net).ok());
-  Status s = BuildNetworkGraph(net, &g, {}, 0.001);
+      "v .5 1 0\nl 1 2 3\nl 4 5 6\n",
+      &g, 0.001);
   ASSERT_TRUE(s.ok()) << s.message;
   EXPECT_EQ(g.vertex_of_input[3], g.vertex_of_input[1]);  // the T's foot
   EXPECT_EQ(g.vertex_of_input[4], g.vertex_of_input[1]);
   EXPECT_EQ(g.welded_edges, 1);  // the repeated point's edge
   EXPECT_EQ(g.curves.size(), 3u);
-  std::istringstream line(
+  s = Build(
       "v 0 0 0\nv .0004 0 0\nv .0004 0 0\nv .0008 0 0\nv 1 0 0\n"
-      "l 1 2 3 4 5\n");
-  ASSERT_TRUE(ReadNetworkObj(line, &net).ok());
-  s = BuildNetworkGraph(net, &g, {}, 0.001);
+      "l 1 2 3 4 5\n",
+      &g, 0.001);
   ASSERT_TRUE(s.ok()) << s.message;
   EXPECT_EQ(g.merged_vertices, 1);  // the copy only
   EXPECT_EQ(g.welded_edges, 1);
@@ -318,15 +315,13 @@ TEST(NetworkGraphTest, WeldIgnoresRepeatedPoints) {
 // dangles).
 TEST(NetworkGraphTest, WeldLeavesStubsBesideTheirJunction) {
   NetworkGraph g;
-  std::istringstream curl(
+  Status s = Build(
       "v 0 0 0\nv .001 0 0\nv .002 .001 0\nv .001 .002 0\nv 1 0 0\n"
-      "l 1 2 3 4 2 5\n");
-  CurveNetwork net;
-  ASSERT_TRUE(ReadNetworkObj(curl, &net).ok());
-  Status s = BuildNetworkGraph(net, &g, {}, 0.01);
+      "l 1 2 3 4 2 5\n",
+      &g, 0.01);
   ASSERT_TRUE(s.ok()) << s.message;
   EXPECT_EQ(g.merged_vertices, 0);
-  net = {};
+  CurveNetwork net;
   for (int k = -3; k <= 3; ++k) net.vertices.push_back({0.001 * k, 0, 0});
   net.polylines.push_back({0, 1, 2, 3, 4, 5, 6});  // through (0, 0, 0): 3
   net.vertices.push_back({0, -1, 0});              // 7
