@@ -213,6 +213,22 @@ def expect_report(call, *words):
     raise AssertionError(f"no error report; expected {words}")
 
 
+def cyclic_poly_curve(name, points):
+    """A curve object of one cyclic POLY spline through `points`, linked
+    and active."""
+    data = bpy.data.curves.new(name, 'CURVE')
+    data.dimensions = '3D'
+    spline = data.splines.new('POLY')
+    spline.points.add(len(points) - 1)
+    for point, co in zip(spline.points, points):
+        point.co = (*co, 1)
+    spline.use_cyclic_u = True
+    obj = bpy.data.objects.new(name, data)
+    bpy.context.scene.collection.objects.link(obj)
+    activate(obj)
+    return obj
+
+
 def mesh_object(name, vertices, edges=(), faces=()):
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([tuple(v) for v in vertices], list(edges), list(faces))
@@ -744,17 +760,8 @@ def test_triangulate_curve_bezier_poly_and_polyline():
     assert counts(surface)[0] == 4 * curve.data.splines[0].resolution_u
 
     # A cyclic POLY spline.
-    data = bpy.data.curves.new("poly", 'CURVE')
-    data.dimensions = '3D'
-    spline = data.splines.new('POLY')
-    pts = saddle(40)
-    spline.points.add(len(pts) - 1)
-    for p, co in zip(spline.points, pts):
-        p.co = (*co, 1)
-    spline.use_cyclic_u = True
-    poly = bpy.data.objects.new("poly", data)
-    bpy.context.scene.collection.objects.link(poly)
-    activate(poly)
+    poly = cyclic_poly_curve("poly", saddle(40))
+    spline = poly.data.splines[0]
     assert bpy.ops.mesh.dot_triangulate_curve(preset='MINIMAL_AREA') \
         == {'FINISHED'}
     check_disk(bpy.context.active_object)
@@ -937,18 +944,9 @@ def test_surface_curves_leaves_out_segments_of_zero_length():
     # A cyclic square whose last point repeats its first, and a point
     # drawn twice on a side: edges of zero length, left out (the server
     # welds their ends), even with Weld Distance 0.
-    data = bpy.data.curves.new("square", 'CURVE')
-    data.dimensions = '3D'
-    spline = data.splines.new('POLY')
-    corners = [(0, 0, 0), (1, 0, 0), (1, 0.5, 0), (1, 0.5, 0), (1, 1, 0),
-               (0, 1, 0), (0, 0, 0)]
-    spline.points.add(len(corners) - 1)
-    for point, co in zip(spline.points, corners):
-        point.co = (*co, 1)
-    spline.use_cyclic_u = True
-    obj = bpy.data.objects.new("square", data)
-    bpy.context.scene.collection.objects.link(obj)
-    activate(obj)
+    cyclic_poly_curve("square", [(0, 0, 0), (1, 0, 0), (1, 0.5, 0),
+                                 (1, 0.5, 0), (1, 1, 0), (0, 1, 0),
+                                 (0, 0, 0)])
     with Recording("surface_network") as rec:
         assert bpy.ops.mesh.dot_surface_curves(
             stage='TRIANGULATE', weld_distance=0) == {'FINISHED'}
